@@ -1,0 +1,73 @@
+// ConvexHull: the convex hull of a point set, with a fast support function.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace hullcheck {
+
+namespace detail {
+struct HullData;
+}
+
+/// Convex hull of a finite point set, in the points' own (local) frame.
+///
+/// Built once with qhull; the input may contain duplicates, and may be coplanar (a flat polygon),
+/// collinear (a segment) or a single point: the hull then has dimension 2, 1 or 0 and is still a
+/// valid shape for every query. Points closer than 1e-12 x (set size) to a lower-dimensional
+/// affine hull are treated as lying on it.
+///
+/// The support function is exact (it returns a vertex that maximises the dot product). Below
+/// `kHillClimbingThreshold` vertices it scans all vertices; above, it hill-climbs over the vertex
+/// adjacency graph, which on a convex polytope always ends at a global maximum.
+///
+/// Copying is cheap: copies share the immutable hull data. Thread-safe for concurrent reads.
+/// Throws InputError for an empty point set or a non-finite coordinate (naming the point index).
+class ConvexHull {
+ public:
+  /// Hull vertex count from which support uses hill climbing instead of a linear scan.
+  static constexpr std::size_t kHillClimbingThreshold = 48;
+
+  explicit ConvexHull(const std::vector<Eigen::Vector3d>& points);
+
+  /// Hull vertices (a subset of the input points, exact copies), local frame.
+  const std::vector<Eigen::Vector3d>& vertices() const;
+  std::size_t vertex_count() const;
+  /// Affine dimension of the hull: 0 point, 1 segment, 2 polygon, 3 polytope.
+  int dimension() const;
+  /// Indices (into vertices()) of the vertices joined to vertex `i` by a hull edge.
+  std::vector<int> neighbors(int i) const;
+  /// Triangulated boundary (indices into vertices()), outward-facing for dimension 3;
+  /// for a polygon, a fan over its vertices; empty for dimension < 2.
+  const std::vector<std::array<int, 3>>& triangles() const;
+  /// Largest distance of a vertex from the local origin: the scale used by tolerances.
+  double extent() const;
+  /// A vertex maximising dot(v, direction) (local frame). Zero direction gives some vertex.
+  Eigen::Vector3d support(const Eigen::Vector3d& direction) const;
+  /// Index of such a vertex; `hint` is a starting vertex for hill climbing (any valid index).
+  int support_index(const Eigen::Vector3d& direction, int hint = -1) const;
+
+  const detail::HullData& data() const { return *data_; }
+
+ private:
+  std::shared_ptr<const detail::HullData> data_;
+};
+
+namespace detail {
+/// Immutable hull storage, laid out for the support function.
+struct HullData {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<double> xs, ys, zs;               // vertices as structure of arrays (linear scan)
+  std::vector<std::int32_t> adjacency_offsets;  // CSR: neighbours of i are
+  std::vector<std::int32_t> adjacency;          //   adjacency[offsets[i] .. offsets[i+1])
+  std::vector<std::array<int, 3>> triangles;
+  std::array<std::int32_t, 8> octant_start{};  // support vertex of (+-1,+-1,+-1), by sign bits
+  int dimension = 0;
+  double extent = 0.0;
+};
+}  // namespace detail
+
+}  // namespace hullcheck

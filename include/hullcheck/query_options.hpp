@@ -1,0 +1,25 @@
+// Tolerances and iteration caps of the proximity queries, all in one place.
+#pragma once
+
+namespace hullcheck {
+
+/// Tolerance model. Every tolerance is relative: it is multiplied by the query's scale,
+///   scale = max(extent(A), extent(B)),
+/// where extent is the largest distance of a point of the shape (margin included) from its local
+/// origin. Answers are exact up to `relative_tolerance * scale`:
+///  - distance and depth are within that of the true value (for polytopes and exact primitives);
+///  - intersect's verdict is right whenever the true distance or depth exceeds it; inside that
+///    band (touching contact) either verdict may be returned.
+/// Curved cores (cylinders) converge geometrically; they may stop at the iteration cap with a
+/// bracket wider than the tolerance, which the result's status reports.
+struct QueryOptions {
+  /// Convergence tolerance relative to scale (see above). 1e-10 leaves a margin of 10x to
+  /// the 1e-9 accuracy the tests check, and is ~1e6 x double precision.
+  double relative_tolerance = 1e-10;
+  /// GJK iteration cap (each iteration adds one support point). Polytopes need < 30 in practice.
+  int max_gjk_iterations = 128;
+  /// EPA iteration cap (each iteration adds one polytope vertex). Bounded by storage too.
+  int max_epa_iterations = 250;
+};
+
+}  // namespace hullcheck

@@ -1,0 +1,45 @@
+// Shape: any convex shape hullcheck can query, optionally inflated by a margin.
+#pragma once
+
+#include <hullcheck/convex_hull.hpp>
+#include <hullcheck/primitives.hpp>
+
+#include <variant>
+
+namespace hullcheck {
+
+/// What a Shape is made of, without its margin.
+enum class ShapeKind { kSphere, kCapsule, kBox, kCylinder, kConvexHull };
+
+/// A convex shape in its local frame: one primitive or hull, grown by `margin` (>= 0) in every
+/// direction (the Minkowski sum with a ball of that radius, e.g. link padding). Implicitly
+/// constructible from each primitive and from ConvexHull, so queries accept them directly.
+/// Cheap to copy (hull data is shared). Thread-safe for concurrent reads.
+class Shape {
+ public:
+  using Geometry = std::variant<Sphere, Capsule, Box, Cylinder, ConvexHull>;
+
+  Shape(const Sphere& s) : geometry_(s) {}         // NOLINT(google-explicit-constructor)
+  Shape(const Capsule& c) : geometry_(c) {}        // NOLINT(google-explicit-constructor)
+  Shape(const Box& b) : geometry_(b) {}            // NOLINT(google-explicit-constructor)
+  Shape(const Cylinder& c) : geometry_(c) {}       // NOLINT(google-explicit-constructor)
+  Shape(const ConvexHull& h) : geometry_(h) {}     // NOLINT(google-explicit-constructor)
+
+  /// The same geometry grown by `margin` metres (>= 0, finite; throws InputError otherwise).
+  /// Margins add: inflated(a).inflated(b) has margin a + b.
+  Shape inflated(double margin) const;
+
+  ShapeKind kind() const { return static_cast<ShapeKind>(geometry_.index()); }
+  const Geometry& geometry() const { return geometry_; }
+  double margin() const { return margin_; }
+  /// Radius of a ball about the local origin that contains the shape (margin included).
+  double bounding_radius() const;
+  /// Support point of the inflated shape in local frame: argmax over the shape of dot(p, d).
+  Eigen::Vector3d support(const Eigen::Vector3d& direction) const;
+
+ private:
+  Geometry geometry_;
+  double margin_ = 0.0;
+};
+
+}  // namespace hullcheck

@@ -1,0 +1,199 @@
+#include <hullcheck/convex_hull.hpp>
+#include <hullcheck/errors.hpp>
+
+#include "detail/support.hpp"
+#include "qhull_wrapper.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <string>
+
+namespace hullcheck {
+
+namespace {
+
+/// Points closer than this (relative to the set's bounding-box diagonal) to a lower-dimensional
+/// affine hull are treated as lying on it.
+constexpr double kFlatness = 1e-12;
+
+template <class Distance>
+int farthest_from(const std::vector<Eigen::Vector3d>& points, const Distance& distance) {
+  int best = 0;
+  double best_distance = -1.0;
+  for (int i = 0; i < static_cast<int>(points.size()); ++i) {
+    const double d = distance(points[i]);
+    if (d > best_distance) {
+      best_distance = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
+struct Hull {
+  std::vector<int> ids;                      // input indices of the hull vertices
+  std::vector<std::array<int, 2>> edges;     // input indices
+  std::vector<std::array<int, 3>> triangles;  // input indices
+  int dimension = 0;
+};
+
+/// Polygon (dimension 2) from qhull in the plane spanned by u, w through origin o.
+Hull planar_hull(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& o,
+                 const Eigen::Vector3d& u, const Eigen::Vector3d& w) {
+  std::vector<double> coords;
+  coords.reserve(2 * points.size());
+  for (const auto& p : points) {
+    coords.push_back(u.dot(p - o));
+    coords.push_back(w.dot(p - o));
+  }
+  const detail::QhullOutput q = detail::run_qhull(2, coords);
+  Hull hull;
+  hull.dimension = 2;
+  hull.ids = q.vertex_ids;
+  for (const auto& f : q.facets) hull.edges.push_back({f[0], f[1]});
+  // Order the polygon by angle about its centroid for a triangle fan.
+  Eigen::Vector2d centroid(0, 0);
+  for (int id : hull.ids) centroid += Eigen::Vector2d(coords[2 * id], coords[2 * id + 1]);
+  centroid /= static_cast<double>(hull.ids.size());
+  std::vector<int> ordered = hull.ids;
+  std::sort(ordered.begin(), ordered.end(), [&](int a, int b) {
+    return std::atan2(coords[2 * a + 1] - centroid.y(), coords[2 * a] - centroid.x()) <
+           std::atan2(coords[2 * b + 1] - centroid.y(), coords[2 * b] - centroid.x());
+  });
+  for (std::size_t i = 1; i + 1 < ordered.size(); ++i) {
+    hull.triangles.push_back({ordered[0], ordered[i], ordered[i + 1]});
+  }
+  return hull;
+}
+
+Hull compute_hull(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d lo = points[0], hi = points[0];
+  for (const auto& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double size = (hi - lo).norm();
+  const double flat = kFlatness * size;
+  Hull hull;
+  if (!(size > 0.0)) {  // all points coincide
+    hull.ids = {0};
+    return hull;
+  }
+  // Initial simplex as qhull builds it: farthest point pairs, then from the line, the plane.
+  const int i0 = farthest_from(points, [&](const Eigen::Vector3d& p) { return (p - lo).norm(); });
+  const Eigen::Vector3d o = points[i0];
+  const int i1 = farthest_from(points, [&](const Eigen::Vector3d& p) { return (p - o).norm(); });
+  const Eigen::Vector3d u = (points[i1] - o).normalized();
+  auto from_line = [&](const Eigen::Vector3d& p) { return (p - o - u * u.dot(p - o)).norm(); };
+  const int i2 = farthest_from(points, from_line);
+  if (!(from_line(points[i2]) > flat)) {  // collinear: the two extreme points
+    const int lo_id = farthest_from(points, [&](const Eigen::Vector3d& p) { return -u.dot(p); });
+    const int hi_id = farthest_from(points, [&](const Eigen::Vector3d& p) { return u.dot(p); });
+    hull.dimension = 1;
+    hull.ids = {lo_id, hi_id};
+    hull.edges = {{lo_id, hi_id}};
+    return hull;
+  }
+  const Eigen::Vector3d n = u.cross(points[i2] - o).normalized();
+  const int i3 = farthest_from(points, [&](const Eigen::Vector3d& p) { return std::abs(n.dot(p - o)); });
+  if (!(std::abs(n.dot(points[i3] - o)) > flat)) {  // coplanar: a polygon
+    return planar_hull(points, o, u, n.cross(u));
+  }
+  std::vector<double> coords;
+  coords.reserve(3 * points.size());
+  for (const auto& p : points) coords.insert(coords.end(), {p.x(), p.y(), p.z()});
+  const detail::QhullOutput q = detail::run_qhull(3, coords);
+  hull.dimension = 3;
+  hull.ids = q.vertex_ids;
+  for (const auto& t : q.facets) {
+    hull.triangles.push_back(t);
+    hull.edges.push_back({t[0], t[1]});
+    hull.edges.push_back({t[1], t[2]});
+    hull.edges.push_back({t[2], t[0]});
+  }
+  return hull;
+}
+
+}  // namespace
+
+ConvexHull::ConvexHull(const std::vector<Eigen::Vector3d>& points) {
+  if (points.empty()) throw InputError("ConvexHull: the point set is empty");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!points[i].allFinite()) {
+      throw InputError("ConvexHull: point " + std::to_string(i) +
+                       " has a NaN or infinite coordinate");
+    }
+  }
+  Hull hull;
+  try {
+    hull = compute_hull(points);
+  } catch (const std::runtime_error& e) {
+    throw InputError(std::string("ConvexHull: cannot hull the point set: ") + e.what());
+  }
+  auto data = std::make_shared<detail::HullData>();
+  data->dimension = hull.dimension;
+  std::sort(hull.ids.begin(), hull.ids.end());
+  hull.ids.erase(std::unique(hull.ids.begin(), hull.ids.end()), hull.ids.end());
+  std::vector<int> local(points.size(), -1);  // input index -> vertex index
+  for (std::size_t k = 0; k < hull.ids.size(); ++k) {
+    local[hull.ids[k]] = static_cast<int>(k);
+    const Eigen::Vector3d& p = points[hull.ids[k]];
+    data->vertices.push_back(p);
+    data->xs.push_back(p.x());
+    data->ys.push_back(p.y());
+    data->zs.push_back(p.z());
+    data->extent = std::max(data->extent, p.norm());
+  }
+  const int n = static_cast<int>(data->vertices.size());
+  std::vector<std::vector<std::int32_t>> neighbors(n);
+  for (const auto& e : hull.edges) {
+    const int a = local[e[0]], b = local[e[1]];
+    if (a < 0 || b < 0 || a == b) continue;
+    neighbors[a].push_back(b);
+    neighbors[b].push_back(a);
+  }
+  data->adjacency_offsets.push_back(0);
+  for (auto& list : neighbors) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    data->adjacency.insert(data->adjacency.end(), list.begin(), list.end());
+    data->adjacency_offsets.push_back(static_cast<std::int32_t>(data->adjacency.size()));
+  }
+  for (const auto& t : hull.triangles) {
+    data->triangles.push_back({local[t[0]], local[t[1]], local[t[2]]});
+  }
+  for (int octant = 0; octant < 8; ++octant) {
+    const Eigen::Vector3d d((octant & 1) ? 1.0 : -1.0, (octant & 2) ? 1.0 : -1.0,
+                            (octant & 4) ? 1.0 : -1.0);
+    data->octant_start[octant] = detail::scan_support_index(*data, d);
+  }
+  data_ = std::move(data);
+}
+
+const std::vector<Eigen::Vector3d>& ConvexHull::vertices() const { return data_->vertices; }
+std::size_t ConvexHull::vertex_count() const { return data_->vertices.size(); }
+int ConvexHull::dimension() const { return data_->dimension; }
+const std::vector<std::array<int, 3>>& ConvexHull::triangles() const { return data_->triangles; }
+double ConvexHull::extent() const { return data_->extent; }
+
+std::vector<int> ConvexHull::neighbors(int i) const {
+  if (i < 0 || i >= static_cast<int>(vertex_count())) {
+    throw InputError("ConvexHull::neighbors: vertex index " + std::to_string(i) +
+                     " out of range");
+  }
+  return {data_->adjacency.begin() + data_->adjacency_offsets[i],
+          data_->adjacency.begin() + data_->adjacency_offsets[i + 1]};
+}
+
+int ConvexHull::support_index(const Eigen::Vector3d& direction, int hint) const {
+  if (hint < 0 || hint >= static_cast<int>(vertex_count())) hint = -1;
+  detail::HullCore core{data_.get()};
+  core.support(direction, hint);
+  return hint;
+}
+
+Eigen::Vector3d ConvexHull::support(const Eigen::Vector3d& direction) const {
+  return data_->vertices[support_index(direction)];
+}
+
+}  // namespace hullcheck

@@ -1,0 +1,320 @@
+// EPA (Expanding Polytope Algorithm, seed section 3 and algorithm 3): the point of the boundary
+// of the core difference A - B nearest to the origin, when the origin is inside it.
+//
+// Storage is fixed (kMaxVertices, kMaxFaces) and lives in the caller's EpaWorkspace, so a query
+// never allocates. Faces keep their neighbours across each edge; a new support point removes
+// the faces that see it (found by a walk from the closest face) and is joined to the horizon.
+#pragma once
+
+#include <hullcheck/query_result.hpp>
+
+#include "minkowski.hpp"
+#include "simplex.hpp"
+
+#include <array>
+#include <cmath>
+
+namespace hullcheck::detail {
+
+constexpr int kEpaMaxVertices = 256;
+constexpr int kEpaMaxFaces = 2 * kEpaMaxVertices;
+
+struct EpaFace {
+  int vertex[3];     // counter-clockwise seen from outside
+  int neighbor[3];   // face across edge (vertex[i], vertex[(i+1)%3])
+  int neighbor_edge[3];
+  Eigen::Vector3d normal;  // unit, outward
+  double offset;           // normal . vertex: distance of the plane from the origin
+  bool alive;
+  bool degenerate;         // zero area: never chosen as closest, removed when seen
+};
+
+struct EpaWorkspace {
+  std::array<SimplexVertex, kEpaMaxVertices> vertices;
+  std::array<EpaFace, kEpaMaxFaces> faces;
+  std::array<int, kEpaMaxFaces> free_faces;
+  std::array<int, kEpaMaxFaces> stack;
+  std::array<std::array<int, 2>, kEpaMaxFaces> horizon;  // (face, edge) pairs kept
+  std::array<int, kEpaMaxVertices> new_face_of_vertex;
+  std::array<int, kEpaMaxVertices> new_face_stamp;  // iteration that set new_face_of_vertex
+};
+
+struct EpaOutput {
+  double depth = 0.0;              ///< Distance from the origin to the boundary (>= 0).
+  Eigen::Vector3d normal{0, 0, 1};  ///< Unit outward normal at the nearest boundary point.
+  Eigen::Vector3d point_a{0, 0, 0}, point_b{0, 0, 0};  ///< Witnesses: point_a - point_b = depth * normal
+  Status status = Status::kConverged;
+  int iterations = 0;
+};
+
+namespace epa_internal {
+
+/// Plane of a face. A face is degenerate when its area is below 1e-12 of the square of its
+/// longest edge (a sliver whose normal has no significant digits) or zero.
+inline void set_plane(EpaWorkspace& ws, EpaFace& f) {
+  const Eigen::Vector3d& p0 = ws.vertices[f.vertex[0]].w;
+  const Eigen::Vector3d& p1 = ws.vertices[f.vertex[1]].w;
+  const Eigen::Vector3d& p2 = ws.vertices[f.vertex[2]].w;
+  Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
+  const double length = n.norm();
+  const double longest_edge_squared =
+      std::max({(p1 - p0).squaredNorm(), (p2 - p1).squaredNorm(), (p0 - p2).squaredNorm()});
+  f.degenerate = !(length > 1e-12 * longest_edge_squared);
+  if (f.degenerate) {
+    f.normal = Eigen::Vector3d::UnitZ();
+    f.offset = INFINITY;
+    return;
+  }
+  n /= length;
+  f.normal = n;
+  // Offset from the vertex nearest to the origin along n (all three agree up to rounding).
+  f.offset = std::max({n.dot(p0), n.dot(p1), n.dot(p2)});
+}
+
+/// Barycentric weights of the projection of `p` on triangle (a, b, c), clamped into it.
+inline void barycentric(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                        const Eigen::Vector3d& c, const Eigen::Vector3d& p, double lambda[3]) {
+  const Eigen::Vector3d pts[3] = {a - p, b - p, c - p};
+  const SubSimplex sub = closest_on_triangle(pts, 0, 1, 2);
+  lambda[0] = lambda[1] = lambda[2] = 0.0;
+  for (int i = 0; i < sub.size; ++i) lambda[sub.index[i]] = sub.lambda[i];
+}
+
+}  // namespace epa_internal
+
+/// Grows a simplex containing the origin (from GJK, any size 1-4) into a tetrahedron; returns
+/// false when the difference is flat (lower-dimensional), filling `flat_normal` with a unit
+/// vector orthogonal to it: the depth is then 0.
+template <class MD>
+bool epa_initial_tetrahedron(MD& md, Simplex& s, double epsilon, Eigen::Vector3d& flat_normal) {
+  const Eigen::Vector3d axes[3] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+                                   Eigen::Vector3d::UnitZ()};
+  if (s.size == 1) {
+    bool grown = false;
+    for (int i = 0; i < 6 && !grown; ++i) {
+      const Eigen::Vector3d d = (i % 2 == 0 ? 1.0 : -1.0) * axes[i / 2];
+      md.support(d, s.vertices[1]);
+      grown = (s.vertices[1].w - s.vertices[0].w).norm() > epsilon;
+    }
+    if (!grown) {
+      flat_normal = Eigen::Vector3d::UnitX();
+      return false;
+    }
+    s.size = 2;
+  }
+  if (s.size == 2) {
+    const Eigen::Vector3d u = (s.vertices[1].w - s.vertices[0].w).normalized();
+    int k = 0;
+    if (std::abs(u.y()) < std::abs(u(k))) k = 1;
+    if (std::abs(u.z()) < std::abs(u(k))) k = 2;
+    const Eigen::Vector3d d1 = u.cross(axes[k]).normalized();
+    const Eigen::Vector3d d2 = u.cross(d1);
+    bool grown = false;
+    const Eigen::Vector3d directions[6] = {d1, -d1, d2, -d2, d1 + d2, -d1 - d2};
+    for (int i = 0; i < 6 && !grown; ++i) {
+      md.support(directions[i], s.vertices[2]);
+      grown = (s.vertices[2].w - s.vertices[0].w).cross(u).norm() > epsilon;
+    }
+    if (!grown) {
+      flat_normal = d1;
+      return false;
+    }
+    s.size = 3;
+  }
+  if (s.size == 3) {
+    const Eigen::Vector3d n =
+        (s.vertices[1].w - s.vertices[0].w).cross(s.vertices[2].w - s.vertices[0].w).normalized();
+    md.support(n, s.vertices[3]);
+    double height = n.dot(s.vertices[3].w - s.vertices[0].w);
+    if (!(std::abs(height) > epsilon)) {
+      md.support(-n, s.vertices[3]);
+      height = n.dot(s.vertices[3].w - s.vertices[0].w);
+    }
+    if (!(std::abs(height) > epsilon)) {
+      flat_normal = n;
+      return false;
+    }
+    s.size = 4;
+  }
+  return true;
+}
+
+/// EPA from a tetrahedron `s` that contains the origin (on its boundary at worst).
+/// `tolerance`: absolute; stops when the support distance along the closest face's normal is
+/// within it of the face's distance (then the depth is exact to `tolerance`).
+template <class MD>
+EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, EpaWorkspace& ws) {
+  using epa_internal::set_plane;
+  EpaOutput out;
+  // A point is above a face when it is more than this above its plane (rounding noise of the
+  // coordinates is ~1e-16 x scale; tolerance is ~1e-10 x scale).
+  const double visibility_epsilon = 1e-4 * tolerance;
+  int vertex_count = 4;
+  for (int i = 0; i < 4; ++i) ws.vertices[i] = s.vertices[i];
+  // Orient the tetrahedron so that (0,1,2) sees vertex 3 on its negative side.
+  {
+    const Eigen::Vector3d& p0 = ws.vertices[0].w;
+    const double volume =
+        (ws.vertices[1].w - p0).cross(ws.vertices[2].w - p0).dot(ws.vertices[3].w - p0);
+    if (volume > 0.0) std::swap(ws.vertices[1], ws.vertices[2]);
+  }
+  // Faces of tetrahedron (0,1,2),(0,3,1),(0,2,3),(1,3,2) with consistent outward winding.
+  static constexpr int kTetFaces[4][3] = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  int face_count = 0;  // high-water mark of used face slots
+  int free_count = 0;
+  for (int f = 0; f < 4; ++f) {
+    EpaFace& face = ws.faces[f];
+    for (int i = 0; i < 3; ++i) face.vertex[i] = kTetFaces[f][i];
+    face.alive = true;
+    set_plane(ws, face);
+  }
+  face_count = 4;
+  // Neighbours of the tetrahedron by matching reversed edges.
+  for (int f = 0; f < 4; ++f) {
+    for (int i = 0; i < 3; ++i) {
+      const int a = ws.faces[f].vertex[i], b = ws.faces[f].vertex[(i + 1) % 3];
+      for (int g = 0; g < 4; ++g) {
+        if (g == f) continue;
+        for (int j = 0; j < 3; ++j) {
+          if (ws.faces[g].vertex[j] == b && ws.faces[g].vertex[(j + 1) % 3] == a) {
+            ws.faces[f].neighbor[i] = g;
+            ws.faces[f].neighbor_edge[i] = j;
+          }
+        }
+      }
+    }
+  }
+
+  for (int i = 0; i < kEpaMaxVertices; ++i) ws.new_face_stamp[i] = 0;
+  int best = -1;
+  EpaFace result{};  // copy of the closest face: its slot may be reused by the expansion
+  for (int iteration = 1;; ++iteration) {
+    out.iterations = iteration;
+    best = -1;
+    double best_offset = INFINITY;
+    for (int f = 0; f < face_count; ++f) {
+      const EpaFace& face = ws.faces[f];
+      if (face.alive && !face.degenerate && face.offset < best_offset) {
+        best_offset = face.offset;
+        best = f;
+      }
+    }
+    if (best < 0) {  // every face degenerate: cannot happen for a proper tetrahedron
+      out.status = Status::kDegenerate;
+      break;
+    }
+    result = ws.faces[best];
+    const EpaFace& closest = result;
+    if (iteration > max_iterations || vertex_count == kEpaMaxVertices) {
+      out.status = Status::kIterationCap;
+      break;
+    }
+    SimplexVertex& w = ws.vertices[vertex_count];
+    md.support(closest.normal, w);
+    const double support_offset = closest.normal.dot(w.w);
+    if (support_offset - closest.offset <= tolerance) break;  // converged
+    // Remove every face that sees w, walking from the closest face; collect the horizon.
+    const int new_vertex = vertex_count++;
+    int horizon_count = 0;
+    int stack_size = 0;
+    ws.faces[best].alive = false;
+    ws.stack[stack_size++] = best;
+    bool broken = false;
+    while (stack_size > 0 && !broken) {
+      const int f = ws.stack[--stack_size];
+      for (int i = 0; i < 3; ++i) {
+        const int g = ws.faces[f].neighbor[i];
+        EpaFace& neighbor = ws.faces[g];
+        if (!neighbor.alive) continue;
+        const bool visible =
+            neighbor.degenerate ||
+            neighbor.normal.dot(w.w - ws.vertices[neighbor.vertex[0]].w) > visibility_epsilon;
+        if (visible) {
+          neighbor.alive = false;
+          ws.stack[stack_size++] = g;
+        } else if (horizon_count < kEpaMaxFaces) {
+          ws.horizon[horizon_count++] = {g, ws.faces[f].neighbor_edge[i]};
+        } else {
+          broken = true;  // cannot happen on a consistent polytope
+        }
+      }
+    }
+    // A horizon edge may have been recorded before its other face was removed later by the
+    // walk; such edges are not on the horizon. Keep only those whose removed side is dead and
+    // kept side alive.
+    int kept = 0;
+    for (int h = 0; h < horizon_count; ++h) {
+      if (ws.faces[ws.horizon[h][0]].alive) ws.horizon[kept++] = ws.horizon[h];
+    }
+    horizon_count = kept;
+    if (horizon_count < 3 || face_count + horizon_count > kEpaMaxFaces) {
+      out.status = Status::kDegenerate;
+      broken = true;
+    }
+    if (broken) break;
+    // Free the removed face slots.
+    for (int f = 0; f < face_count; ++f) {
+      if (!ws.faces[f].alive && ws.faces[f].vertex[0] >= 0) {
+        ws.faces[f].vertex[0] = -1;
+        ws.free_faces[free_count++] = f;
+      }
+    }
+    // One new face per horizon edge (b, a, w) where (a, b) is the edge in the kept face.
+    for (int h = 0; h < horizon_count; ++h) {
+      const int g = ws.horizon[h][0];
+      const int e = ws.horizon[h][1];
+      const int a = ws.faces[g].vertex[e];
+      const int b = ws.faces[g].vertex[(e + 1) % 3];
+      const int f = free_count > 0 ? ws.free_faces[--free_count] : face_count++;
+      EpaFace& face = ws.faces[f];
+      face.vertex[0] = b;
+      face.vertex[1] = a;
+      face.vertex[2] = new_vertex;
+      face.alive = true;
+      face.neighbor[0] = g;
+      face.neighbor_edge[0] = e;
+      ws.faces[g].neighbor[e] = f;
+      ws.faces[g].neighbor_edge[e] = 0;
+      set_plane(ws, face);
+      if (ws.new_face_stamp[b] == iteration) broken = true;  // horizon is not a simple loop
+      ws.new_face_of_vertex[b] = f;  // the new face whose edge (w, b) is edge 2
+      ws.new_face_stamp[b] = iteration;
+      ws.horizon[h][0] = f;
+    }
+    for (int h = 0; h < horizon_count && !broken; ++h) {
+      broken = ws.new_face_stamp[ws.faces[ws.horizon[h][0]].vertex[1]] != iteration;
+    }
+    if (broken) {
+      out.status = Status::kDegenerate;
+      break;
+    }
+    // Link the new faces: edge 1 (a, w) of one meets edge 2 (w, a) of the new face built on
+    // the horizon edge that ends at a.
+    for (int h = 0; h < horizon_count; ++h) {
+      const int f = ws.horizon[h][0];
+      const int a = ws.faces[f].vertex[1];
+      const int g = ws.new_face_of_vertex[a];
+      ws.faces[f].neighbor[1] = g;
+      ws.faces[f].neighbor_edge[1] = 2;
+      ws.faces[g].neighbor[2] = f;
+      ws.faces[g].neighbor_edge[2] = 1;
+    }
+  }
+  if (best >= 0) {
+    const EpaFace& face = result;
+    const double depth = std::max(0.0, face.offset);
+    const Eigen::Vector3d p = face.normal * depth;
+    double lambda[3];
+    epa_internal::barycentric(ws.vertices[face.vertex[0]].w, ws.vertices[face.vertex[1]].w,
+                              ws.vertices[face.vertex[2]].w, p, lambda);
+    out.depth = depth;
+    out.normal = face.normal;
+    out.point_a = lambda[0] * ws.vertices[face.vertex[0]].a +
+                  lambda[1] * ws.vertices[face.vertex[1]].a +
+                  lambda[2] * ws.vertices[face.vertex[2]].a;
+    out.point_b = out.point_a - depth * face.normal;
+  }
+  return out;
+}
+
+}  // namespace hullcheck::detail

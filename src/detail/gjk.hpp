@@ -1,0 +1,112 @@
+// GJK (Gilbert-Johnson-Keerthi) on the Minkowski difference of two cores: seed algorithms 1
+// (closest point) and 2 (boolean test with early exit on a separating direction).
+#pragma once
+
+#include <hullcheck/query_result.hpp>
+
+#include "minkowski.hpp"
+#include "simplex.hpp"
+
+namespace hullcheck::detail {
+
+/// What GJK is asked to decide.
+enum class GjkGoal {
+  kBoolean,   ///< Stop as soon as the distance between cores is known to be <= or > radius.
+  kDistance,  ///< Converge on the core distance (needed when it is below radius, too).
+  kPenetration,  ///< Stop once the cores are proven farther apart than radius, else converge.
+};
+
+struct GjkOutput {
+  Simplex simplex;
+  Eigen::Vector3d v{0, 0, 0};  ///< Closest point of the core difference to the origin.
+  double distance = 0.0;       ///< |v| (an upper bound of the core distance)
+  double lower_bound = 0.0;    ///< Proven lower bound of the core distance.
+  bool cores_overlap = false;  ///< Origin inside the simplex (or within tolerance of it).
+  Status status = Status::kConverged;
+  int iterations = 0;
+};
+
+/// Runs GJK. `v0` is the initial search point (any vector; the warm start's last separating
+/// direction or the vector between the shapes' origins). `radius` is the sum of the shapes'
+/// radii (boolean goal: shapes overlap when the core distance is <= radius). `tolerance` is the
+/// absolute convergence tolerance. Never more than `max_iterations` support calls.
+template <class MD>
+GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int max_iterations,
+              GjkGoal goal) {
+  GjkOutput out;
+  Simplex& s = out.simplex;
+  if (!(v.squaredNorm() > 0.0)) v = Eigen::Vector3d::UnitX();
+  double best_distance_squared = INFINITY;
+  double lower = 0.0;
+  Eigen::Vector3d points[4];
+  for (int iteration = 1; iteration <= max_iterations; ++iteration) {
+    out.iterations = iteration;
+    SimplexVertex& w = s.vertices[s.size];
+    md.support(-v, w);
+    if (s.size > 0) {
+      // v is a point of the difference: |v| bounds the distance from above, and the support
+      // plane through w bounds it from below.
+      const double v_norm = std::sqrt(best_distance_squared);
+      const double bound = v.dot(w.w) / v_norm;
+      if (bound > lower) lower = bound;
+      if (goal != GjkGoal::kDistance && lower > radius) break;  // separating plane found
+      if (v_norm - lower <= tolerance) break;                  // converged
+    }
+    ++s.size;
+    for (int i = 0; i < s.size; ++i) points[i] = s.vertices[i].w;
+    SubSimplex sub;
+    switch (s.size) {
+      case 1:
+        sub = SubSimplex{{0, 0, 0, 0}, {1.0, 0, 0, 0}, 1, points[0].squaredNorm()};
+        break;
+      case 2:
+        sub = closest_on_segment(points, 0, 1);
+        break;
+      case 3:
+        sub = closest_on_triangle(points, 0, 1, 2);
+        break;
+      default:
+        sub = closest_on_tetrahedron(points);
+        break;
+    }
+    // Keep the vertices of the closest region, oldest first.
+    SimplexVertex kept[4];
+    for (int i = 0; i < sub.size; ++i) kept[i] = s.vertices[sub.index[i]];
+    for (int i = 0; i < sub.size; ++i) {
+      s.vertices[i] = kept[i];
+      s.lambda[i] = sub.lambda[i];
+    }
+    s.size = sub.size;
+    if (s.size == 4) {  // origin inside the tetrahedron
+      out.cores_overlap = true;
+      v.setZero();
+      best_distance_squared = 0.0;
+      break;
+    }
+    const Eigen::Vector3d next_v = s.closest_point();
+    const double next_distance_squared = next_v.squaredNorm();
+    if (!(next_distance_squared < best_distance_squared)) {
+      // No progress in double precision: the answer is the best bound there is.
+      if (std::sqrt(best_distance_squared) - lower > tolerance) out.status = Status::kDegenerate;
+      // Restore a simplex whose closest point is the kept v: the new sub-simplex is no worse
+      // in exact arithmetic, so use it but keep the smaller distance estimate.
+      v = next_v;
+      best_distance_squared = std::min(best_distance_squared, next_distance_squared);
+      break;
+    }
+    v = next_v;
+    best_distance_squared = next_distance_squared;
+    if (best_distance_squared <= tolerance * tolerance) {  // touching within tolerance
+      out.cores_overlap = true;
+      break;
+    }
+    if (goal == GjkGoal::kBoolean && best_distance_squared <= radius * radius) break;
+    if (iteration == max_iterations) out.status = Status::kIterationCap;
+  }
+  out.v = v;
+  out.distance = std::sqrt(best_distance_squared);
+  out.lower_bound = std::min(lower, out.distance);
+  return out;
+}
+
+}  // namespace hullcheck::detail

@@ -1,0 +1,38 @@
+// Support of the Minkowski difference A - B of two cores, in A's local frame.
+#pragma once
+
+#include "simplex.hpp"
+
+#include <Eigen/Geometry>
+
+namespace hullcheck::detail {
+
+/// A - B with B placed relative to A: x_A = rotation * x_B + translation. Keeps the hull
+/// support hints of both cores so successive support calls start near the last answer.
+template <class CoreA, class CoreB>
+struct MinkowskiDifference {
+  const CoreA& a;
+  const CoreB& b;
+  Eigen::Matrix3d rotation;     // B's frame to A's frame
+  Eigen::Matrix3d rotation_t;   // A's frame to B's frame
+  Eigen::Vector3d translation;  // B's origin in A's frame
+  int hint_a = -1;
+  int hint_b = -1;
+
+  MinkowskiDifference(const CoreA& core_a, const CoreB& core_b, const Eigen::Isometry3d& b_in_a)
+      : a(core_a),
+        b(core_b),
+        rotation(b_in_a.linear()),
+        rotation_t(b_in_a.linear().transpose()),
+        translation(b_in_a.translation()) {}
+
+  /// Support point of A - B in direction d (A's frame), with its parts.
+  void support(const Eigen::Vector3d& d, SimplexVertex& out) {
+    out.a = a.support(d, hint_a);
+    out.b.noalias() = rotation * b.support(rotation_t * (-d), hint_b);
+    out.b += translation;
+    out.w = out.a - out.b;
+  }
+};
+
+}  // namespace hullcheck::detail

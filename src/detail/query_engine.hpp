@@ -1,0 +1,218 @@
+// One engine behind every query: GJK on the cores, radii added analytically, EPA when the cores
+// overlap. Templated on the two core types so support functions inline.
+#pragma once
+
+#include <hullcheck/proximity_pair.hpp>
+#include <hullcheck/query_options.hpp>
+#include <hullcheck/query_result.hpp>
+#include <hullcheck/shape.hpp>
+
+#include "epa.hpp"
+#include "gjk.hpp"
+#include "support.hpp"
+
+#include <type_traits>
+
+namespace hullcheck::detail {
+
+/// How much of the answer a query needs.
+enum class QueryKind { kIntersect, kDistance, kPenetration, kSignedDistance };
+
+/// Everything a query can produce, in the world frame.
+struct Answer {
+  bool overlapping = false;
+  double signed_distance = 0.0;  ///< distance when apart, -depth when overlapping
+  Eigen::Vector3d point_a{0, 0, 0}, point_b{0, 0, 0};
+  Eigen::Vector3d normal{0, 0, 0};  ///< unit, from A to B
+  Status status = Status::kConverged;
+  int iterations = 0;
+  int epa_iterations = 0;
+  bool has_geometry = false;  ///< points/normal filled (not for kIntersect)
+};
+
+template <class Core>
+double core_extent(const Core& core);
+inline double core_extent(const PointCore&) { return 0.0; }
+inline double core_extent(const SegmentCore& c) { return c.half_length; }
+inline double core_extent(const BoxCore& c) { return c.half.norm(); }
+inline double core_extent(const CylinderCore& c) {
+  return std::sqrt(c.radius * c.radius + c.half_length * c.half_length);
+}
+inline double core_extent(const HullCore& c) { return c.data->extent; }
+
+/// Calls f(core, radius) with the shape's core and its total radius (own + margin).
+template <class F>
+decltype(auto) with_core(const Shape& shape, F&& f) {
+  const double margin = shape.margin();
+  switch (shape.kind()) {
+    case ShapeKind::kSphere:
+      return f(PointCore{}, std::get<Sphere>(shape.geometry()).radius + margin);
+    case ShapeKind::kCapsule: {
+      const Capsule& c = std::get<Capsule>(shape.geometry());
+      return f(SegmentCore{c.half_length}, c.radius + margin);
+    }
+    case ShapeKind::kBox:
+      return f(BoxCore{std::get<Box>(shape.geometry()).half_extents}, margin);
+    case ShapeKind::kCylinder: {
+      const Cylinder& c = std::get<Cylinder>(shape.geometry());
+      return f(CylinderCore{c.radius, c.half_length}, margin);
+    }
+    case ShapeKind::kConvexHull:
+    default:
+      return f(HullCore{&std::get<ConvexHull>(shape.geometry()).data()}, margin);
+  }
+}
+
+/// Core query between two placed cores. `warm` (optional) supplies and receives the warm start.
+template <class CoreA, class CoreB>
+Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
+                 const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
+                 QueryKind kind, const QueryOptions& options, WarmStart* warm) {
+  const Eigen::Isometry3d b_in_a = pose_a.inverse(Eigen::Isometry) * pose_b;
+  MinkowskiDifference<CoreA, CoreB> md(core_a, core_b, b_in_a);
+  const double radius = radius_a + radius_b;
+  const double scale =
+      std::max(core_extent(core_a) + radius_a, core_extent(core_b) + radius_b);
+  // Coordinates of the difference are as large as the offset between the shapes; rounding of
+  // those bounds the reachable accuracy from below.
+  const double rounding = 16.0 * std::numeric_limits<double>::epsilon() *
+                          (b_in_a.translation().norm() + 2.0 * scale);
+  const double tolerance = std::max(options.relative_tolerance * scale, rounding);
+
+  Eigen::Vector3d v0 = -b_in_a.translation();  // A's origin minus B's: inside the difference
+  if (warm != nullptr && warm->valid) {
+    v0 = warm->direction;
+    md.hint_a = warm->hint_a;
+    md.hint_b = warm->hint_b;
+  }
+  const GjkGoal goal = kind == QueryKind::kIntersect     ? GjkGoal::kBoolean
+                       : kind == QueryKind::kPenetration ? GjkGoal::kPenetration
+                                                         : GjkGoal::kDistance;
+  const GjkOutput g = gjk(md, v0, radius, tolerance, options.max_gjk_iterations, goal);
+
+  Answer answer;
+  answer.iterations = g.iterations;
+  answer.status = g.status;
+  if (warm != nullptr) {
+    if (g.distance > 0.0) {  // keep the previous direction when the cores overlap
+      warm->direction = g.v;
+      warm->valid = true;
+    }
+    warm->hint_a = md.hint_a;
+    warm->hint_b = md.hint_b;
+  }
+  if (kind == QueryKind::kIntersect) {
+    answer.overlapping = g.cores_overlap || g.distance <= radius ||
+                         (g.lower_bound <= radius && g.distance - radius <= tolerance);
+    return answer;
+  }
+  answer.has_geometry = true;
+  const Eigen::Matrix3d& rotation_a = pose_a.linear();
+  if (kind == QueryKind::kPenetration && !g.cores_overlap && g.lower_bound > radius) {
+    return answer;  // proven apart: no penetration (points and normal are not needed)
+  }
+  if (!g.cores_overlap) {
+    // Cores apart: the shapes are apart by |v| - radius, or overlap by radius - |v|.
+    const Eigen::Vector3d core_a_point = g.simplex.point_a();
+    const Eigen::Vector3d core_b_point = g.simplex.point_b();
+    const Eigen::Vector3d n = -g.v / g.distance;  // from A to B, A's frame
+    answer.signed_distance = g.distance - radius;
+    answer.overlapping = answer.signed_distance < 0.0;
+    if (kind == QueryKind::kDistance && answer.overlapping) {
+      // One common point: on the segment between the core points, inside both shapes.
+      const Eigen::Vector3d p =
+          core_a_point + (radius > 0.0 ? g.distance * radius_a / radius : 0.0) * n;
+      answer.point_a = answer.point_b = pose_a * p;
+      answer.signed_distance = 0.0;
+      return answer;
+    }
+    answer.point_a = pose_a * (core_a_point + radius_a * n);
+    answer.point_b = pose_a * (core_b_point - radius_b * n);
+    answer.normal = rotation_a * n;
+    return answer;
+  }
+  // Cores overlap (or touch within tolerance).
+  answer.overlapping = true;
+  if (kind == QueryKind::kDistance) {
+    answer.signed_distance = 0.0;
+    answer.point_a = answer.point_b = pose_a * g.simplex.point_a();
+    return answer;
+  }
+  Simplex simplex = g.simplex;
+  Eigen::Vector3d flat_normal;
+  EpaOutput e;
+  if (epa_initial_tetrahedron(md, simplex, tolerance, flat_normal)) {
+    thread_local EpaWorkspace workspace;
+    e = epa(md, simplex, tolerance, options.max_epa_iterations, workspace);
+  } else {
+    // The difference is flat and contains the origin: depth 0 across its plane.
+    e.depth = 0.0;
+    e.normal = flat_normal;
+    e.point_a = g.simplex.point_a();
+    e.point_b = e.point_a;
+    e.iterations = 0;
+  }
+  // EPA's normal n is the outward normal of A - B at the nearest boundary point p = a - b;
+  // moving B by p separates, so n points from A to B.
+  answer.epa_iterations = e.iterations;
+  answer.iterations += e.iterations;
+  if (e.status != Status::kConverged) answer.status = e.status;
+  answer.signed_distance = -(e.depth + radius);
+  answer.normal = rotation_a * e.normal;
+  answer.point_a = pose_a * (e.point_a + radius_a * e.normal);
+  answer.point_b = pose_a * (e.point_b - radius_b * e.normal);
+  return answer;
+}
+
+/// Dispatches on both shapes' kinds to run_query.
+inline Answer query(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+                    const Eigen::Isometry3d& pose_b, QueryKind kind, const QueryOptions& options,
+                    WarmStart* warm) {
+  return with_core(a, [&](const auto& core_a, double radius_a) {
+    return with_core(b, [&](const auto& core_b, double radius_b) {
+      return run_query(core_a, radius_a, pose_a, core_b, radius_b, pose_b, kind, options, warm);
+    });
+  });
+}
+
+}  // namespace hullcheck::detail
+
+namespace hullcheck::detail {
+
+inline DistanceResult to_distance_result(const Answer& a) {
+  DistanceResult r;
+  r.distance = a.overlapping ? 0.0 : a.signed_distance;
+  r.point_a = a.point_a;
+  r.point_b = a.point_b;
+  r.normal = a.overlapping ? Eigen::Vector3d::Zero() : a.normal;
+  r.status = a.status;
+  r.iterations = a.iterations;
+  return r;
+}
+
+inline PenetrationResult to_penetration_result(const Answer& a) {
+  PenetrationResult r;
+  r.status = a.status;
+  r.iterations = a.iterations;
+  r.epa_iterations = a.epa_iterations;
+  if (!a.overlapping) return r;
+  r.depth = -a.signed_distance;
+  r.normal = a.normal;
+  r.point_a = a.point_a;
+  r.point_b = a.point_b;
+  return r;
+}
+
+inline SignedDistanceResult to_signed_distance_result(const Answer& a) {
+  SignedDistanceResult r;
+  r.signed_distance = a.signed_distance;
+  r.point_a = a.point_a;
+  r.point_b = a.point_b;
+  r.normal = a.normal;
+  r.status = a.status;
+  r.iterations = a.iterations;
+  r.epa_iterations = a.epa_iterations;
+  return r;
+}
+
+}  // namespace hullcheck::detail

@@ -1,0 +1,29 @@
+#include <hullcheck/primitives.hpp>
+
+#include "detail/checks.hpp"
+
+namespace hullcheck {
+
+using detail::require_non_negative;
+
+Sphere::Sphere(double r) : radius(r) { require_non_negative(r, "Sphere radius"); }
+
+Capsule::Capsule(double r, double length) : radius(r), half_length(0.5 * length) {
+  require_non_negative(r, "Capsule radius");
+  require_non_negative(length, "Capsule length");
+}
+
+Box::Box(double size_x, double size_y, double size_z) : Box(Eigen::Vector3d(size_x, size_y, size_z)) {}
+
+Box::Box(const Eigen::Vector3d& sizes) : half_extents(0.5 * sizes) {
+  require_non_negative(sizes.x(), "Box size x");
+  require_non_negative(sizes.y(), "Box size y");
+  require_non_negative(sizes.z(), "Box size z");
+}
+
+Cylinder::Cylinder(double r, double length) : radius(r), half_length(0.5 * length) {
+  require_non_negative(r, "Cylinder radius");
+  require_non_negative(length, "Cylinder length");
+}
+
+}  // namespace hullcheck

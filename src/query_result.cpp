@@ -1,0 +1,17 @@
+#include <hullcheck/query_result.hpp>
+
+namespace hullcheck {
+
+const char* to_string(Status status) {
+  switch (status) {
+    case Status::kConverged:
+      return "converged";
+    case Status::kIterationCap:
+      return "iteration cap";
+    case Status::kDegenerate:
+      return "degenerate";
+  }
+  return "unknown";
+}
+
+}  // namespace hullcheck
