@@ -1,12 +1,11 @@
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <hullcheck/convex_hull.hpp>
 #include <hullcheck/errors.hpp>
+#include <string>
 
 #include "detail/support.hpp"
 #include "qhull_wrapper.hpp"
-
-#include <Eigen/Geometry>
-#include <algorithm>
-#include <string>
 
 namespace hullcheck {
 
@@ -31,8 +30,8 @@ int farthest_from(const std::vector<Eigen::Vector3d>& points, const Distance& di
 }
 
 struct Hull {
-  std::vector<int> ids;                      // input indices of the hull vertices
-  std::vector<std::array<int, 2>> edges;     // input indices
+  std::vector<int> ids;                       // input indices of the hull vertices
+  std::vector<std::array<int, 2>> edges;      // input indices
   std::vector<std::array<int, 3>> triangles;  // input indices
   int dimension = 0;
 };
@@ -95,7 +94,8 @@ Hull compute_hull(const std::vector<Eigen::Vector3d>& points) {
     return hull;
   }
   const Eigen::Vector3d n = u.cross(points[i2] - o).normalized();
-  const int i3 = farthest_from(points, [&](const Eigen::Vector3d& p) { return std::abs(n.dot(p - o)); });
+  const int i3 =
+      farthest_from(points, [&](const Eigen::Vector3d& p) { return std::abs(n.dot(p - o)); });
   if (!(std::abs(n.dot(points[i3] - o)) > flat)) {  // coplanar: a polygon
     return planar_hull(points, o, u, n.cross(u));
   }
@@ -178,8 +178,7 @@ double ConvexHull::extent() const { return data_->extent; }
 
 std::vector<int> ConvexHull::neighbors(int i) const {
   if (i < 0 || i >= static_cast<int>(vertex_count())) {
-    throw InputError("ConvexHull::neighbors: vertex index " + std::to_string(i) +
-                     " out of range");
+    throw InputError("ConvexHull::neighbors: vertex index " + std::to_string(i) + " out of range");
   }
   return {data_->adjacency.begin() + data_->adjacency_offsets[i],
           data_->adjacency.begin() + data_->adjacency_offsets[i + 1]};

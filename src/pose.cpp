@@ -1,7 +1,6 @@
+#include <cmath>
 #include <hullcheck/errors.hpp>
 #include <hullcheck/pose.hpp>
-
-#include <cmath>
 #include <string>
 
 namespace hullcheck {
@@ -30,12 +29,12 @@ void validate_pose(const Eigen::Isometry3d& pose, const char* what) {
     throw InputError(std::string(what) + ": pose contains NaN or infinity");
   }
   const Eigen::Matrix3d r = pose.linear();
-  const double orthogonality_error = (r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  const double orthogonality_error =
+      (r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
   if (orthogonality_error > 1e-6 || r.determinant() < 0.0) {
-    throw InputError(std::string(what) +
-                     ": pose rotation is not a proper rotation matrix (|R^T R - I| = " +
-                     std::to_string(orthogonality_error) + ", det = " +
-                     std::to_string(r.determinant()) + ")");
+    throw InputError(
+        std::string(what) + ": pose rotation is not a proper rotation matrix (|R^T R - I| = " +
+        std::to_string(orthogonality_error) + ", det = " + std::to_string(r.determinant()) + ")");
   }
 }
 

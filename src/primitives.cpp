@@ -13,7 +13,8 @@ Capsule::Capsule(double r, double length) : radius(r), half_length(0.5 * length)
   require_non_negative(length, "Capsule length");
 }
 
-Box::Box(double size_x, double size_y, double size_z) : Box(Eigen::Vector3d(size_x, size_y, size_z)) {}
+Box::Box(double size_x, double size_y, double size_z)
+    : Box(Eigen::Vector3d(size_x, size_y, size_z)) {}
 
 Box::Box(const Eigen::Vector3d& sizes) : half_extents(0.5 * sizes) {
   require_non_negative(sizes.x(), "Box size x");

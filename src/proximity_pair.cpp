@@ -1,9 +1,8 @@
 #include <hullcheck/pose.hpp>
 #include <hullcheck/proximity_pair.hpp>
+#include <stdexcept>
 
 #include "detail/query_engine.hpp"
-
-#include <stdexcept>
 
 namespace hullcheck {
 
@@ -76,8 +75,8 @@ const SignedDistanceResult& ProximityPair::signed_distance() {
   if (!signed_distance_) {
     // One GJK run (and EPA when overlapping) answers all three questions.
     const detail::Answer answer =
-        detail::query(*shape_a_, pose_a_, *shape_b_, pose_b_,
-                      detail::QueryKind::kSignedDistance, options_, &warm_);
+        detail::query(*shape_a_, pose_a_, *shape_b_, pose_b_, detail::QueryKind::kSignedDistance,
+                      options_, &warm_);
     last_iterations_ = answer.iterations;
     signed_distance_ = detail::to_signed_distance_result(answer);
     verdict_ = answer.overlapping ? Verdict::kColliding : Verdict::kSeparated;

@@ -42,8 +42,8 @@ bool try_qhull(int dim, std::vector<double>& coords, const char* options, QhullO
   qh_zero(qh, errors.file());
   std::string command = std::string("qhull ") + options;
   const int count = static_cast<int>(coords.size()) / dim;
-  const int exit_code = qh_new_qhull(qh, dim, count, coords.data(), False, command.data(),
-                                     nullptr, errors.file());
+  const int exit_code =
+      qh_new_qhull(qh, dim, count, coords.data(), False, command.data(), nullptr, errors.file());
   if (exit_code == 0) {
     out.vertex_ids.clear();
     out.facets.clear();

@@ -13,9 +13,8 @@ Shape Shape::inflated(double margin) const {
 }
 
 double Shape::bounding_radius() const {
-  return detail::with_core(*this, [](const auto& core, double radius) {
-    return detail::core_extent(core) + radius;
-  });
+  return detail::with_core(
+      *this, [](const auto& core, double radius) { return detail::core_extent(core) + radius; });
 }
 
 Eigen::Vector3d Shape::support(const Eigen::Vector3d& direction) const {

@@ -2,7 +2,6 @@
 #pragma once
 
 #include <hullcheck/queries.hpp>
-
 #include <optional>
 
 namespace hullcheck {

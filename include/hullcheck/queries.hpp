@@ -6,11 +6,10 @@
 // Errors: a pose with NaN/inf or a non-rotation linear part throws InputError.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <hullcheck/query_options.hpp>
 #include <hullcheck/query_result.hpp>
 #include <hullcheck/shape.hpp>
-
-#include <Eigen/Geometry>
 
 namespace hullcheck {
 

@@ -10,6 +10,9 @@ namespace hullcheck {
 ///  - distance and depth are within that of the true value (for polytopes and exact primitives);
 ///  - intersect's verdict is right whenever the true distance or depth exceeds it; inside that
 ///    band (touching contact) either verdict may be returned.
+///  - normals and witness points are exact to the same order on flat features (polytopes, box
+///    faces); where the nearest feature is curved (cylinder rim, sphere, margin) a distance
+///    exact to eps fixes the direction only to about sqrt(2 eps / curvature radius).
 /// Curved cores (cylinders) converge geometrically; they may stop at the iteration cap with a
 /// bracket wider than the tolerance, which the result's status reports.
 struct QueryOptions {

@@ -17,7 +17,7 @@ const char* to_string(Status status);
 
 /// Result of distance(). All points in the world frame, metres.
 struct DistanceResult {
-  double distance = 0.0;      ///< >= 0; 0 when the shapes overlap or touch.
+  double distance = 0.0;             ///< >= 0; 0 when the shapes overlap or touch.
   Eigen::Vector3d point_a{0, 0, 0};  ///< Closest point on A (a point of A when overlapping).
   Eigen::Vector3d point_b{0, 0, 0};  ///< Closest point on B; |point_b - point_a| == distance.
   /// Unit direction from A to B (point_b - point_a normalised) when apart; zero when overlapping.

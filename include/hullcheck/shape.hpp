@@ -3,7 +3,6 @@
 
 #include <hullcheck/convex_hull.hpp>
 #include <hullcheck/primitives.hpp>
-
 #include <variant>
 
 namespace hullcheck {
@@ -19,11 +18,11 @@ class Shape {
  public:
   using Geometry = std::variant<Sphere, Capsule, Box, Cylinder, ConvexHull>;
 
-  Shape(const Sphere& s) : geometry_(s) {}         // NOLINT(google-explicit-constructor)
-  Shape(const Capsule& c) : geometry_(c) {}        // NOLINT(google-explicit-constructor)
-  Shape(const Box& b) : geometry_(b) {}            // NOLINT(google-explicit-constructor)
-  Shape(const Cylinder& c) : geometry_(c) {}       // NOLINT(google-explicit-constructor)
-  Shape(const ConvexHull& h) : geometry_(h) {}     // NOLINT(google-explicit-constructor)
+  Shape(const Sphere& s) : geometry_(s) {}      // NOLINT(google-explicit-constructor)
+  Shape(const Capsule& c) : geometry_(c) {}     // NOLINT(google-explicit-constructor)
+  Shape(const Box& b) : geometry_(b) {}         // NOLINT(google-explicit-constructor)
+  Shape(const Cylinder& c) : geometry_(c) {}    // NOLINT(google-explicit-constructor)
+  Shape(const ConvexHull& h) : geometry_(h) {}  // NOLINT(google-explicit-constructor)
 
   /// The same geometry grown by `margin` metres (>= 0, finite; throws InputError otherwise).
   /// Margins add: inflated(a).inflated(b) has margin a + b.

@@ -1,9 +1,8 @@
 // Input validation helpers shared by the sources (not installed).
 #pragma once
 
-#include <hullcheck/errors.hpp>
-
 #include <cmath>
+#include <hullcheck/errors.hpp>
 #include <string>
 
 namespace hullcheck::detail {
@@ -11,8 +10,8 @@ namespace hullcheck::detail {
 /// Throws InputError "<what> must be finite and >= 0 (got <value>)" unless value is.
 inline void require_non_negative(double value, const char* what) {
   if (!(std::isfinite(value) && value >= 0.0)) {
-    throw InputError(std::string(what) + " must be finite and >= 0 (got " +
-                     std::to_string(value) + ")");
+    throw InputError(std::string(what) + " must be finite and >= 0 (got " + std::to_string(value) +
+                     ")");
   }
 }
 

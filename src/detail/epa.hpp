@@ -6,13 +6,12 @@
 // the faces that see it (found by a walk from the closest face) and is joined to the horizon.
 #pragma once
 
+#include <array>
+#include <cmath>
 #include <hullcheck/query_result.hpp>
 
 #include "minkowski.hpp"
 #include "simplex.hpp"
-
-#include <array>
-#include <cmath>
 
 namespace hullcheck::detail {
 
@@ -20,13 +19,13 @@ constexpr int kEpaMaxVertices = 256;
 constexpr int kEpaMaxFaces = 2 * kEpaMaxVertices;
 
 struct EpaFace {
-  int vertex[3];     // counter-clockwise seen from outside
-  int neighbor[3];   // face across edge (vertex[i], vertex[(i+1)%3])
+  int vertex[3];    // counter-clockwise seen from outside
+  int neighbor[3];  // face across edge (vertex[i], vertex[(i+1)%3])
   int neighbor_edge[3];
   Eigen::Vector3d normal;  // unit, outward
   double offset;           // normal . vertex: distance of the plane from the origin
   bool alive;
-  bool degenerate;         // zero area: never chosen as closest, removed when seen
+  bool degenerate;  // zero area: never chosen as closest, removed when seen
 };
 
 struct EpaWorkspace {
@@ -40,9 +39,10 @@ struct EpaWorkspace {
 };
 
 struct EpaOutput {
-  double depth = 0.0;              ///< Distance from the origin to the boundary (>= 0).
+  double depth = 0.0;               ///< Distance from the origin to the boundary (>= 0).
   Eigen::Vector3d normal{0, 0, 1};  ///< Unit outward normal at the nearest boundary point.
-  Eigen::Vector3d point_a{0, 0, 0}, point_b{0, 0, 0};  ///< Witnesses: point_a - point_b = depth * normal
+  Eigen::Vector3d point_a{0, 0, 0},
+      point_b{0, 0, 0};  ///< Witnesses: point_a - point_b = depth * normal
   Status status = Status::kConverged;
   int iterations = 0;
 };

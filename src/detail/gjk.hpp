@@ -11,8 +11,8 @@ namespace hullcheck::detail {
 
 /// What GJK is asked to decide.
 enum class GjkGoal {
-  kBoolean,   ///< Stop as soon as the distance between cores is known to be <= or > radius.
-  kDistance,  ///< Converge on the core distance (needed when it is below radius, too).
+  kBoolean,      ///< Stop as soon as the distance between cores is known to be <= or > radius.
+  kDistance,     ///< Converge on the core distance (needed when it is below radius, too).
   kPenetration,  ///< Stop once the cores are proven farther apart than radius, else converge.
 };
 
@@ -50,7 +50,7 @@ GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int ma
       const double bound = v.dot(w.w) / v_norm;
       if (bound > lower) lower = bound;
       if (goal != GjkGoal::kDistance && lower > radius) break;  // separating plane found
-      if (v_norm - lower <= tolerance) break;                  // converged
+      if (v_norm - lower <= tolerance) break;                   // converged
     }
     ++s.size;
     for (int i = 0; i < s.size; ++i) points[i] = s.vertices[i].w;

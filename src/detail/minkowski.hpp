@@ -1,9 +1,9 @@
 // Support of the Minkowski difference A - B of two cores, in A's local frame.
 #pragma once
 
-#include "simplex.hpp"
-
 #include <Eigen/Geometry>
+
+#include "simplex.hpp"
 
 namespace hullcheck::detail {
 

@@ -6,12 +6,11 @@
 #include <hullcheck/query_options.hpp>
 #include <hullcheck/query_result.hpp>
 #include <hullcheck/shape.hpp>
+#include <type_traits>
 
 #include "epa.hpp"
 #include "gjk.hpp"
 #include "support.hpp"
-
-#include <type_traits>
 
 namespace hullcheck::detail {
 
@@ -71,12 +70,11 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   const Eigen::Isometry3d b_in_a = pose_a.inverse(Eigen::Isometry) * pose_b;
   MinkowskiDifference<CoreA, CoreB> md(core_a, core_b, b_in_a);
   const double radius = radius_a + radius_b;
-  const double scale =
-      std::max(core_extent(core_a) + radius_a, core_extent(core_b) + radius_b);
+  const double scale = std::max(core_extent(core_a) + radius_a, core_extent(core_b) + radius_b);
   // Coordinates of the difference are as large as the offset between the shapes; rounding of
   // those bounds the reachable accuracy from below.
-  const double rounding = 16.0 * std::numeric_limits<double>::epsilon() *
-                          (b_in_a.translation().norm() + 2.0 * scale);
+  const double rounding =
+      16.0 * std::numeric_limits<double>::epsilon() * (b_in_a.translation().norm() + 2.0 * scale);
   const double tolerance = std::max(options.relative_tolerance * scale, rounding);
 
   Eigen::Vector3d v0 = -b_in_a.translation();  // A's origin minus B's: inside the difference

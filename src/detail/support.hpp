@@ -3,9 +3,8 @@
 // EPA run on the cores and add the radii analytically, which is exact and converges faster.
 #pragma once
 
-#include <hullcheck/convex_hull.hpp>
-
 #include <Eigen/Core>
+#include <hullcheck/convex_hull.hpp>
 
 namespace hullcheck::detail {
 

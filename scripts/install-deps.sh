@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs the Debian packages hullcheck needs (library, tests, benchmark peers) when missing.
+# Usage: scripts/install-deps.sh   (as root, or with sudo available)
+set -euo pipefail
+packages=(cmake g++ make clang-format pkg-config
+  libompl-dev libeigen3-dev liburdfdom-dev libassimp-dev libqhull-dev libyaml-cpp-dev
+  libtinyxml2-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libfcl-dev libccd-dev libbullet-dev liborocos-kdl-dev libkdl-parser-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "installing: ${missing[*]}" >&2
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}" >/dev/null
+fi

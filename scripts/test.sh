@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The whole test suite: install what is missing, then
+#  1. formatting check (clang-format) of the project's sources,
+#  2. Release build with warnings as errors: GoogleTest suites and benchmark smoke runs (ctest),
+#  3. the same tests built with AddressSanitizer + UndefinedBehaviorSanitizer,
+#  4. install into a temporary prefix and build a consumer with find_package(hullcheck).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+jobs="$(nproc)"
+
+echo "== clang-format"
+git ls-files '*.hpp' '*.cpp' | xargs clang-format --dry-run --Werror
+
+echo "== Release build and tests"
+cmake -S . -B build/ci-release -DCMAKE_BUILD_TYPE=Release -DHULLCHECK_BUILD_BENCHMARKS=ON >/dev/null
+cmake --build build/ci-release -j"$jobs"
+(cd build/ci-release && ctest --output-on-failure -j"$jobs")
+
+echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
+cmake -S . -B build/ci-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHULLCHECK_SANITIZE=ON >/dev/null
+cmake --build build/ci-sanitize -j"$jobs" --target hullcheck_tests
+(cd build/ci-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  ctest --output-on-failure -j"$jobs")
+
+echo "== Install and find_package(hullcheck) from a consumer"
+prefix="$(mktemp -d)"
+cmake --install build/ci-release --prefix "$prefix" >/dev/null
+cmake -S tests/install_consumer -B build/ci-consumer -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
+cmake --build build/ci-consumer -j"$jobs"
+./build/ci-consumer/hullcheck_consumer
+rm -rf "$prefix"
+echo "== all checks passed"
