@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <hullcheck/errors.hpp>
 #include <hullcheck/pose.hpp>
@@ -24,17 +25,21 @@ Eigen::Isometry3d pose_from_xyz_angles(const Eigen::Vector3d& position,
 }
 
 void validate_pose(const Eigen::Isometry3d& pose, const char* what) {
+  // Hand-written: this runs twice per query, so no temporaries and no transcendental calls.
   const auto& m = pose.matrix();
-  if (!m.topRows<3>().allFinite()) {
-    throw InputError(std::string(what) + ": pose contains NaN or infinity");
+  bool finite = true;
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 3; ++r) finite = finite && std::isfinite(m(r, c));
   }
-  const Eigen::Matrix3d r = pose.linear();
-  const double orthogonality_error =
-      (r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-  if (orthogonality_error > 1e-6 || r.determinant() < 0.0) {
-    throw InputError(
-        std::string(what) + ": pose rotation is not a proper rotation matrix (|R^T R - I| = " +
-        std::to_string(orthogonality_error) + ", det = " + std::to_string(r.determinant()) + ")");
+  if (!finite) throw InputError(std::string(what) + ": pose contains NaN or infinity");
+  const Eigen::Vector3d x = m.block<3, 1>(0, 0), y = m.block<3, 1>(0, 1), z = m.block<3, 1>(0, 2);
+  const double error = std::max({std::abs(x.squaredNorm() - 1.0), std::abs(y.squaredNorm() - 1.0),
+                                 std::abs(z.squaredNorm() - 1.0), std::abs(x.dot(y)),
+                                 std::abs(x.dot(z)), std::abs(y.dot(z))});
+  if (error > 1e-6 || x.cross(y).dot(z) < 0.0) {
+    throw InputError(std::string(what) +
+                     ": pose rotation is not a proper rotation matrix (orthonormality error " +
+                     std::to_string(error) + ", det " + std::to_string(x.cross(y).dot(z)) + ")");
   }
 }
 

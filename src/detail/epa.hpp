@@ -71,13 +71,11 @@ inline void set_plane(EpaWorkspace& ws, EpaFace& f) {
   f.offset = std::max({n.dot(p0), n.dot(p1), n.dot(p2)});
 }
 
-/// Barycentric weights of the projection of `p` on triangle (a, b, c), clamped into it.
-inline void barycentric(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                        const Eigen::Vector3d& c, const Eigen::Vector3d& p, double lambda[3]) {
-  const Eigen::Vector3d pts[3] = {a - p, b - p, c - p};
-  const SubSimplex sub = closest_on_triangle(pts, 0, 1, 2);
-  lambda[0] = lambda[1] = lambda[2] = 0.0;
-  for (int i = 0; i < sub.size; ++i) lambda[sub.index[i]] = sub.lambda[i];
+/// Closest point of a face's triangle to the origin (indices 0-2 into face.vertex).
+inline SubSimplex closest_on_face(const EpaWorkspace& ws, const EpaFace& face) {
+  const Eigen::Vector3d points[3] = {ws.vertices[face.vertex[0]].w, ws.vertices[face.vertex[1]].w,
+                                     ws.vertices[face.vertex[2]].w};
+  return closest_on_triangle(points, 0, 1, 2);
 }
 
 }  // namespace epa_internal
@@ -93,8 +91,8 @@ bool epa_initial_tetrahedron(MD& md, Simplex& s, double epsilon, Eigen::Vector3d
     bool grown = false;
     for (int i = 0; i < 6 && !grown; ++i) {
       const Eigen::Vector3d d = (i % 2 == 0 ? 1.0 : -1.0) * axes[i / 2];
-      md.support(d, s.vertices[1]);
-      grown = (s.vertices[1].w - s.vertices[0].w).norm() > epsilon;
+      md.support(d, s.w[1], s.a[1], s.b[1]);
+      grown = (s.w[1] - s.w[0]).norm() > epsilon;
     }
     if (!grown) {
       flat_normal = Eigen::Vector3d::UnitX();
@@ -103,7 +101,7 @@ bool epa_initial_tetrahedron(MD& md, Simplex& s, double epsilon, Eigen::Vector3d
     s.size = 2;
   }
   if (s.size == 2) {
-    const Eigen::Vector3d u = (s.vertices[1].w - s.vertices[0].w).normalized();
+    const Eigen::Vector3d u = (s.w[1] - s.w[0]).normalized();
     int k = 0;
     if (std::abs(u.y()) < std::abs(u(k))) k = 1;
     if (std::abs(u.z()) < std::abs(u(k))) k = 2;
@@ -112,8 +110,8 @@ bool epa_initial_tetrahedron(MD& md, Simplex& s, double epsilon, Eigen::Vector3d
     bool grown = false;
     const Eigen::Vector3d directions[6] = {d1, -d1, d2, -d2, d1 + d2, -d1 - d2};
     for (int i = 0; i < 6 && !grown; ++i) {
-      md.support(directions[i], s.vertices[2]);
-      grown = (s.vertices[2].w - s.vertices[0].w).cross(u).norm() > epsilon;
+      md.support(directions[i], s.w[2], s.a[2], s.b[2]);
+      grown = (s.w[2] - s.w[0]).cross(u).norm() > epsilon;
     }
     if (!grown) {
       flat_normal = d1;
@@ -122,13 +120,12 @@ bool epa_initial_tetrahedron(MD& md, Simplex& s, double epsilon, Eigen::Vector3d
     s.size = 3;
   }
   if (s.size == 3) {
-    const Eigen::Vector3d n =
-        (s.vertices[1].w - s.vertices[0].w).cross(s.vertices[2].w - s.vertices[0].w).normalized();
-    md.support(n, s.vertices[3]);
-    double height = n.dot(s.vertices[3].w - s.vertices[0].w);
+    const Eigen::Vector3d n = (s.w[1] - s.w[0]).cross(s.w[2] - s.w[0]).normalized();
+    md.support(n, s.w[3], s.a[3], s.b[3]);
+    double height = n.dot(s.w[3] - s.w[0]);
     if (!(std::abs(height) > epsilon)) {
-      md.support(-n, s.vertices[3]);
-      height = n.dot(s.vertices[3].w - s.vertices[0].w);
+      md.support(-n, s.w[3], s.a[3], s.b[3]);
+      height = n.dot(s.w[3] - s.w[0]);
     }
     if (!(std::abs(height) > epsilon)) {
       flat_normal = n;
@@ -144,13 +141,14 @@ bool epa_initial_tetrahedron(MD& md, Simplex& s, double epsilon, Eigen::Vector3d
 /// within it of the face's distance (then the depth is exact to `tolerance`).
 template <class MD>
 EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, EpaWorkspace& ws) {
+  using epa_internal::closest_on_face;
   using epa_internal::set_plane;
   EpaOutput out;
   // A point is above a face when it is more than this above its plane (rounding noise of the
   // coordinates is ~1e-16 x scale; tolerance is ~1e-10 x scale).
   const double visibility_epsilon = 1e-4 * tolerance;
   int vertex_count = 4;
-  for (int i = 0; i < 4; ++i) ws.vertices[i] = s.vertices[i];
+  for (int i = 0; i < 4; ++i) ws.vertices[i] = s.vertex(i);
   // Orient the tetrahedron so that (0,1,2) sees vertex 3 on its negative side.
   {
     const Eigen::Vector3d& p0 = ws.vertices[0].w;
@@ -301,18 +299,34 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
     }
   }
   if (best >= 0) {
-    const EpaFace& face = result;
-    const double depth = std::max(0.0, face.offset);
-    const Eigen::Vector3d p = face.normal * depth;
-    double lambda[3];
-    epa_internal::barycentric(ws.vertices[face.vertex[0]].w, ws.vertices[face.vertex[1]].w,
-                              ws.vertices[face.vertex[2]].w, p, lambda);
-    out.depth = depth;
-    out.normal = face.normal;
-    out.point_a = lambda[0] * ws.vertices[face.vertex[0]].a +
-                  lambda[1] * ws.vertices[face.vertex[1]].a +
-                  lambda[2] * ws.vertices[face.vertex[2]].a;
-    out.point_b = out.point_a - depth * face.normal;
+    // Witnesses: several faces can share the nearest plane (coplanar triangles of one polytope
+    // face); take the one whose triangle holds the origin's projection, i.e. whose closest
+    // point to the origin is nearest.
+    EpaFace face = result;
+    SubSimplex sub = closest_on_face(ws, face);
+    if (out.status == Status::kConverged) {
+      for (int f = 0; f < face_count; ++f) {
+        const EpaFace& candidate = ws.faces[f];
+        if (!candidate.alive || candidate.degenerate ||
+            candidate.offset > result.offset + tolerance) {
+          continue;
+        }
+        const SubSimplex c = closest_on_face(ws, candidate);
+        if (c.distance_squared < sub.distance_squared) {
+          sub = c;
+          face = candidate;
+        }
+      }
+    }
+    out.depth = std::max(0.0, result.offset);
+    out.normal = result.normal;
+    out.point_a.setZero();
+    out.point_b.setZero();
+    for (int i = 0; i < sub.size; ++i) {
+      const SimplexVertex& v = ws.vertices[face.vertex[sub.index[i]]];
+      out.point_a += sub.lambda[i] * v.a;
+      out.point_b += sub.lambda[i] * v.b;
+    }
   }
   return out;
 }

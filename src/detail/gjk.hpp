@@ -38,42 +38,43 @@ GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int ma
   if (!(v.squaredNorm() > 0.0)) v = Eigen::Vector3d::UnitX();
   double best_distance_squared = INFINITY;
   double lower = 0.0;
-  Eigen::Vector3d points[4];
   for (int iteration = 1; iteration <= max_iterations; ++iteration) {
     out.iterations = iteration;
-    SimplexVertex& w = s.vertices[s.size];
-    md.support(-v, w);
-    if (s.size > 0) {
+    const int k = s.size;
+    md.support(-v, s.w[k], s.a[k], s.b[k]);
+    if (k > 0) {
       // v is a point of the difference: |v| bounds the distance from above, and the support
       // plane through w bounds it from below.
       const double v_norm = std::sqrt(best_distance_squared);
-      const double bound = v.dot(w.w) / v_norm;
+      const double bound = v.dot(s.w[k]) / v_norm;
       if (bound > lower) lower = bound;
       if (goal != GjkGoal::kDistance && lower > radius) break;  // separating plane found
       if (v_norm - lower <= tolerance) break;                   // converged
     }
     ++s.size;
-    for (int i = 0; i < s.size; ++i) points[i] = s.vertices[i].w;
     SubSimplex sub;
     switch (s.size) {
       case 1:
-        sub = SubSimplex{{0, 0, 0, 0}, {1.0, 0, 0, 0}, 1, points[0].squaredNorm()};
+        sub = SubSimplex{{0, 0, 0, 0}, {1.0, 0, 0, 0}, 1, s.w[0].squaredNorm()};
         break;
       case 2:
-        sub = closest_on_segment(points, 0, 1);
+        sub = closest_on_segment(s.w, 0, 1);
         break;
       case 3:
-        sub = closest_on_triangle(points, 0, 1, 2);
+        sub = closest_on_triangle(s.w, 0, 1, 2);
         break;
       default:
-        sub = closest_on_tetrahedron(points);
+        sub = closest_on_tetrahedron(s.w);
         break;
     }
-    // Keep the vertices of the closest region, oldest first.
-    SimplexVertex kept[4];
-    for (int i = 0; i < sub.size; ++i) kept[i] = s.vertices[sub.index[i]];
+    // Keep the vertices of the closest region, in place (indices are ascending).
     for (int i = 0; i < sub.size; ++i) {
-      s.vertices[i] = kept[i];
+      const int from = sub.index[i];
+      if (from != i) {
+        s.w[i] = s.w[from];
+        s.a[i] = s.a[from];
+        s.b[i] = s.b[from];
+      }
       s.lambda[i] = sub.lambda[i];
     }
     s.size = sub.size;

@@ -19,20 +19,23 @@ struct MinkowskiDifference {
   int hint_a = -1;
   int hint_b = -1;
 
-  MinkowskiDifference(const CoreA& core_a, const CoreB& core_b, const Eigen::Isometry3d& b_in_a)
+  MinkowskiDifference(const CoreA& core_a, const CoreB& core_b, const Eigen::Matrix3d& b_to_a,
+                      const Eigen::Vector3d& b_origin_in_a)
       : a(core_a),
         b(core_b),
-        rotation(b_in_a.linear()),
-        rotation_t(b_in_a.linear().transpose()),
-        translation(b_in_a.translation()) {}
+        rotation(b_to_a),
+        rotation_t(b_to_a.transpose()),
+        translation(b_origin_in_a) {}
 
-  /// Support point of A - B in direction d (A's frame), with its parts.
-  void support(const Eigen::Vector3d& d, SimplexVertex& out) {
-    out.a = a.support(d, hint_a);
-    out.b.noalias() = rotation * b.support(rotation_t * (-d), hint_b);
-    out.b += translation;
-    out.w = out.a - out.b;
+  /// Support point w = pa - pb of A - B in direction d (A's frame), with its parts.
+  void support(const Eigen::Vector3d& d, Eigen::Vector3d& w, Eigen::Vector3d& pa,
+               Eigen::Vector3d& pb) {
+    pa = a.support(d, hint_a);
+    pb.noalias() = rotation * b.support(rotation_t * (-d), hint_b);
+    pb += translation;
+    w = pa - pb;
   }
+  void support(const Eigen::Vector3d& d, SimplexVertex& out) { support(d, out.w, out.a, out.b); }
 };
 
 }  // namespace hullcheck::detail

@@ -67,17 +67,19 @@ template <class CoreA, class CoreB>
 Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
                  const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
                  QueryKind kind, const QueryOptions& options, WarmStart* warm) {
-  const Eigen::Isometry3d b_in_a = pose_a.inverse(Eigen::Isometry) * pose_b;
-  MinkowskiDifference<CoreA, CoreB> md(core_a, core_b, b_in_a);
+  const Eigen::Matrix3d rotation_a_t = pose_a.linear().transpose();
+  MinkowskiDifference<CoreA, CoreB> md(
+      core_a, core_b, rotation_a_t * pose_b.linear(),
+      rotation_a_t * (pose_b.translation() - pose_a.translation()));
   const double radius = radius_a + radius_b;
   const double scale = std::max(core_extent(core_a) + radius_a, core_extent(core_b) + radius_b);
   // Coordinates of the difference are as large as the offset between the shapes; rounding of
   // those bounds the reachable accuracy from below.
   const double rounding =
-      16.0 * std::numeric_limits<double>::epsilon() * (b_in_a.translation().norm() + 2.0 * scale);
+      16.0 * std::numeric_limits<double>::epsilon() * (md.translation.norm() + 2.0 * scale);
   const double tolerance = std::max(options.relative_tolerance * scale, rounding);
 
-  Eigen::Vector3d v0 = -b_in_a.translation();  // A's origin minus B's: inside the difference
+  Eigen::Vector3d v0 = -md.translation;  // A's origin minus B's: inside the difference
   if (warm != nullptr && warm->valid) {
     v0 = warm->direction;
     md.hint_a = warm->hint_a;

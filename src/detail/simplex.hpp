@@ -20,30 +20,33 @@ struct SimplexVertex {
   Eigen::Vector3d w, a, b;
 };
 
-/// Up to four vertices with barycentric weights of the closest point (newest vertex last).
+/// Up to four vertices (structure of arrays, oldest first) with the barycentric weights of the
+/// closest point to the origin.
 struct Simplex {
-  SimplexVertex vertices[4];
+  Eigen::Vector3d w[4], a[4], b[4];
   double lambda[4] = {1.0, 0.0, 0.0, 0.0};
   int size = 0;
 
-  Eigen::Vector3d closest_point() const {
-    Eigen::Vector3d v = lambda[0] * vertices[0].w;
-    for (int i = 1; i < size; ++i) v += lambda[i] * vertices[i].w;
-    return v;
+  Eigen::Vector3d closest_point() const { return combine(w); }
+  Eigen::Vector3d point_a() const { return combine(a); }
+  Eigen::Vector3d point_b() const { return combine(b); }
+  SimplexVertex vertex(int i) const { return {w[i], a[i], b[i]}; }
+  void set_vertex(int i, const SimplexVertex& v) {
+    w[i] = v.w;
+    a[i] = v.a;
+    b[i] = v.b;
   }
-  Eigen::Vector3d point_a() const {
-    Eigen::Vector3d p = lambda[0] * vertices[0].a;
-    for (int i = 1; i < size; ++i) p += lambda[i] * vertices[i].a;
-    return p;
-  }
-  Eigen::Vector3d point_b() const {
-    Eigen::Vector3d p = lambda[0] * vertices[0].b;
-    for (int i = 1; i < size; ++i) p += lambda[i] * vertices[i].b;
-    return p;
+
+ private:
+  Eigen::Vector3d combine(const Eigen::Vector3d* p) const {
+    Eigen::Vector3d sum = lambda[0] * p[0];
+    for (int i = 1; i < size; ++i) sum += lambda[i] * p[i];
+    return sum;
   }
 };
 
-/// Closest point of a sub-simplex: which vertices (by index into the parent) and weights.
+/// Closest point of a sub-simplex: which vertices (by index into the parent, ascending) and
+/// weights.
 struct SubSimplex {
   int index[4];
   double lambda[4];
@@ -103,9 +106,10 @@ inline SubSimplex closest_on_triangle(const Eigen::Vector3d* p, int i0, int i1, 
   best.size = 0;
   best.distance_squared = INFINITY;
   auto consider_edges = [&](const bool* check) {
+    static constexpr int kEdges[3][2] = {{1, 2}, {0, 2}, {0, 1}};  // opposite vertex j
     for (int j = 0; j < 3; ++j) {
       if (!check[j]) continue;
-      const SubSimplex e = closest_on_segment(p, ids[(j + 1) % 3], ids[(j + 2) % 3]);
+      const SubSimplex e = closest_on_segment(p, ids[kEdges[j][0]], ids[kEdges[j][1]]);
       if (e.distance_squared < best.distance_squared) best = e;
     }
   };
