@@ -27,11 +27,10 @@ Eigen::Isometry3d pose_from_xyz_angles(const Eigen::Vector3d& position,
 void validate_pose(const Eigen::Isometry3d& pose, const char* what) {
   // Hand-written: this runs twice per query, so no temporaries and no transcendental calls.
   const auto& m = pose.matrix();
-  bool finite = true;
-  for (int c = 0; c < 4; ++c) {
-    for (int r = 0; r < 3; ++r) finite = finite && std::isfinite(m(r, c));
+  // x * 0 is 0 for every finite x and NaN for NaN or infinity: one branch for all 12 entries.
+  if (!((m.topRows<3>() * 0.0).sum() == 0.0)) {
+    throw InputError(std::string(what) + ": pose contains NaN or infinity");
   }
-  if (!finite) throw InputError(std::string(what) + ": pose contains NaN or infinity");
   const Eigen::Vector3d x = m.block<3, 1>(0, 0), y = m.block<3, 1>(0, 1), z = m.block<3, 1>(0, 2);
   const double error = std::max({std::abs(x.squaredNorm() - 1.0), std::abs(y.squaredNorm() - 1.0),
                                  std::abs(z.squaredNorm() - 1.0), std::abs(x.dot(y)),
