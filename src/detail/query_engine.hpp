@@ -10,6 +10,7 @@
 
 #include "epa.hpp"
 #include "gjk.hpp"
+#include "gjk_boolean.hpp"
 #include "support.hpp"
 
 namespace hullcheck::detail {
@@ -84,6 +85,21 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
     v0 = warm->direction;
     md.hint_a = warm->hint_a;
     md.hint_b = warm->hint_b;
+  }
+  if (kind == QueryKind::kIntersect) {
+    int boolean_iterations = 0;
+    const BooleanVerdict verdict =
+        gjk_boolean(md, -v0, radius, options.max_gjk_iterations, boolean_iterations);
+    if (verdict != BooleanVerdict::kUndecided) {
+      Answer answer;
+      answer.overlapping = verdict == BooleanVerdict::kOverlapping;
+      answer.iterations = boolean_iterations;
+      if (warm != nullptr) {
+        warm->hint_a = md.hint_a;
+        warm->hint_b = md.hint_b;
+      }
+      return answer;
+    }
   }
   const GjkGoal goal = kind == QueryKind::kIntersect     ? GjkGoal::kBoolean
                        : kind == QueryKind::kPenetration ? GjkGoal::kPenetration

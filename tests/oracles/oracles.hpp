@@ -11,7 +11,10 @@ namespace hullcheck::oracle {
 
 /// Exact distance between the convex hulls of two world-frame point sets, by exhaustive search
 /// over feature pairs (vertex/edge/face of each hull, hull faces from qhull). When the hulls
-/// overlap, distance is 0 and the points are unspecified (overlapping = true).
+/// overlap, distance is 0 and the points are unspecified (overlapping = true). Touching hulls
+/// (distance below 1e-13 x the coordinates' magnitude) count as overlapping. Flat, collinear,
+/// single-point and duplicated sets are handled (a set thinner than 1e-12 x its size around a
+/// plane or line is treated as lying on it). Throws std::invalid_argument for an empty set.
 struct Distance {
   double distance = 0.0;
   Eigen::Vector3d point_a{0, 0, 0}, point_b{0, 0, 0};
@@ -23,6 +26,9 @@ Distance brute_force_distance(const std::vector<Eigen::Vector3d>& world_a,
 /// Penetration depth by hulling the Minkowski difference {a - b} with qhull and taking the facet
 /// nearest to the origin. depth = 0 when the origin is outside (not overlapping).
 /// normal: unit, translate B by depth*normal to separate (from A towards B).
+/// When A - B is flat (e.g. two segments, a point and a polygon), no translation of positive
+/// length is needed: depth = 0, and overlapping tells whether they touch (normal then any
+/// unit vector orthogonal to the difference). Cost: qhull on |A| x |B| points.
 struct Penetration {
   double depth = 0.0;
   Eigen::Vector3d normal{0, 0, 0};
@@ -60,6 +66,9 @@ struct HullPair {
 };
 /// `count` pairs of hulls with `vertices` vertices each, random poses, about
 /// `overlap_fraction` of them overlapping (the rest separated by up to one shape size).
+/// Exactly round(overlap_fraction * count) pairs overlap when vertices >= 4 (each placed with
+/// overlap_interval, so the labels are the oracle's). Cost: one qhull of the Minkowski
+/// difference per pair, O(vertices^2) points: ~3 ms at 64 vertices, ~0.3 s at 512.
 std::vector<HullPair> make_hull_pairs(std::uint64_t seed, int count, int vertices,
                                       double overlap_fraction = 0.3, double size = 1.0);
 

@@ -1,0 +1,140 @@
+// Boolean GJK (seed algorithm 2): does the core difference A - B contain the origin, or is it
+// farther from it than the shapes' radius? Only search directions are kept, no barycentric
+// coordinates, so an iteration costs little more than its support call. Each verdict is proven:
+//  - apart: a support point w with d.w < -radius |d| gives a plane separating the origin from
+//    the difference by more than radius (seed: "collision absent" when <D, P*> < 0);
+//  - overlapping: the origin lies inside a tetrahedron of support points (seed eq. 26-28).
+// When neither is proven (touching contact, margins within reach, iteration cap) the caller
+// falls back to the distance GJK, whose tolerance model decides.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace hullcheck::detail {
+
+enum class BooleanVerdict { kApart, kOverlapping, kUndecided };
+
+namespace boolean_gjk {
+
+inline Eigen::Vector3d triple(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                              const Eigen::Vector3d& c) {
+  return a.cross(b).cross(c);
+}
+
+/// Seed case a on segment (a newest, b): updates the simplex and the direction.
+inline void line(Eigen::Vector3d* s, int& n, Eigen::Vector3d& d) {
+  const Eigen::Vector3d& a = s[0];
+  const Eigen::Vector3d ab = s[1] - a;
+  if (ab.dot(-a) > 0.0) {
+    d = triple(ab, -a, ab);  // orthogonal to ab, towards the origin
+    n = 2;
+  } else {
+    d = -a;
+    n = 1;
+  }
+}
+
+/// Seed case b on triangle (a newest, b, c).
+inline void triangle(Eigen::Vector3d* s, int& n, Eigen::Vector3d& d) {
+  const Eigen::Vector3d a = s[0];
+  const Eigen::Vector3d ao = -a;
+  const Eigen::Vector3d ab = s[1] - a;
+  const Eigen::Vector3d ac = s[2] - a;
+  const Eigen::Vector3d abc = ab.cross(ac);
+  if (abc.cross(ac).dot(ao) > 0.0) {
+    if (ac.dot(ao) > 0.0) {  // edge ac
+      s[1] = s[2];
+      d = triple(ac, ao, ac);
+      n = 2;
+      return;
+    }
+    line(s, n, d);  // edge ab or vertex a
+    return;
+  }
+  if (ab.cross(abc).dot(ao) > 0.0) {
+    line(s, n, d);
+    return;
+  }
+  n = 3;
+  if (abc.dot(ao) > 0.0) {
+    d = abc;
+  } else {  // below: flip the winding so that the normal faces the origin
+    std::swap(s[1], s[2]);
+    d = -abc;
+  }
+}
+
+/// Seed case c on tetrahedron (a newest, b, c, d) with the origin above triangle (b, c, d)'s
+/// side facing a. Returns true when the origin is enclosed.
+inline bool tetrahedron(Eigen::Vector3d* s, int& n, Eigen::Vector3d& d) {
+  const Eigen::Vector3d a = s[0];
+  const Eigen::Vector3d ao = -a;
+  const Eigen::Vector3d ab = s[1] - a;
+  const Eigen::Vector3d ac = s[2] - a;
+  const Eigen::Vector3d ad = s[3] - a;
+  // Faces through a, normals pointing out of the tetrahedron (the winding of (b, c, d) faces a).
+  if (ab.cross(ac).dot(ao) > 0.0) {
+    n = 3;
+    triangle(s, n, d);
+    return false;
+  }
+  if (ac.cross(ad).dot(ao) > 0.0) {
+    s[1] = s[2];
+    s[2] = s[3];
+    n = 3;
+    triangle(s, n, d);
+    return false;
+  }
+  if (ad.cross(ab).dot(ao) > 0.0) {
+    s[2] = s[1];
+    s[1] = s[3];
+    n = 3;
+    triangle(s, n, d);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace boolean_gjk
+
+/// Runs the boolean GJK from search direction `d` with at most `max_iterations` support calls.
+template <class MD>
+BooleanVerdict gjk_boolean(MD& md, Eigen::Vector3d d, double radius, int max_iterations,
+                           int& iterations) {
+  Eigen::Vector3d s[4];  // newest first
+  Eigen::Vector3d pa, pb;
+  if (!(d.squaredNorm() > 0.0)) d = Eigen::Vector3d::UnitX();
+  int n = 0;
+  for (iterations = 1; iterations <= max_iterations; ++iterations) {
+    Eigen::Vector3d w;
+    md.support(d, w, pa, pb);
+    const double dw = d.dot(w);
+    if (dw < 0.0) {
+      if (dw * dw > radius * radius * d.squaredNorm()) return BooleanVerdict::kApart;
+      return BooleanVerdict::kUndecided;  // cores apart, but maybe within the radii
+    }
+    for (int i = n; i > 0; --i) s[i] = s[i - 1];
+    s[0] = w;
+    ++n;
+    switch (n) {
+      case 1:
+        d = -w;
+        break;
+      case 2:
+        boolean_gjk::line(s, n, d);
+        break;
+      case 3:
+        boolean_gjk::triangle(s, n, d);
+        break;
+      default:
+        if (boolean_gjk::tetrahedron(s, n, d)) return BooleanVerdict::kOverlapping;
+        break;
+    }
+    // Origin on the current segment or triangle (touching, or a degenerate simplex): the
+    // direction vanishes; let the distance GJK decide with its tolerance.
+    if (!(d.squaredNorm() > 0.0)) return BooleanVerdict::kUndecided;
+  }
+  return BooleanVerdict::kUndecided;
+}
+
+}  // namespace hullcheck::detail
