@@ -145,6 +145,11 @@ ConvexHull::ConvexHull(const std::vector<Eigen::Vector3d>& points) {
     data->extent = std::max(data->extent, p.norm());
   }
   const int n = static_cast<int>(data->vertices.size());
+  while (data->xs.size() % 4 != 0) {  // pad for the vectorised scan (see scan_support_index)
+    data->xs.push_back(data->xs[0]);
+    data->ys.push_back(data->ys[0]);
+    data->zs.push_back(data->zs[0]);
+  }
   std::vector<std::vector<std::int32_t>> neighbors(n);
   for (const auto& e : hull.edges) {
     const int a = local[e[0]], b = local[e[1]];
@@ -162,10 +167,35 @@ ConvexHull::ConvexHull(const std::vector<Eigen::Vector3d>& points) {
   for (const auto& t : hull.triangles) {
     data->triangles.push_back({local[t[0]], local[t[1]], local[t[2]]});
   }
-  for (int octant = 0; octant < 8; ++octant) {
-    const Eigen::Vector3d d((octant & 1) ? 1.0 : -1.0, (octant & 2) ? 1.0 : -1.0,
-                            (octant & 4) ? 1.0 : -1.0);
-    data->octant_start[octant] = detail::scan_support_index(*data, d);
+  // Bounding ball about the box centre; inner ball about the vertex centroid, touching the
+  // nearest facet plane.
+  Eigen::Vector3d lo = data->vertices[0], hi = data->vertices[0], centroid(0, 0, 0);
+  for (const auto& v : data->vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+    centroid += v;
+  }
+  centroid /= static_cast<double>(n);
+  data->outer_center = 0.5 * (lo + hi);
+  for (const auto& v : data->vertices) {
+    data->outer_radius = std::max(data->outer_radius, (v - data->outer_center).norm());
+  }
+  data->outer_radius *= 1.0 + 1e-12;  // rounding of the norms above
+  data->inner_center = centroid;
+  if (data->dimension == 3) {
+    double inner = INFINITY;
+    for (const auto& t : data->triangles) {
+      const Eigen::Vector3d& p0 = data->vertices[t[0]];
+      const Eigen::Vector3d normal =
+          (data->vertices[t[1]] - p0).cross(data->vertices[t[2]] - p0).normalized();
+      if (normal.allFinite()) inner = std::min(inner, normal.dot(p0 - centroid));
+    }
+    data->inner_radius = std::isfinite(inner) ? std::max(0.0, inner * (1.0 - 1e-9)) : 0.0;
+  }
+  constexpr int kTableSize = 6 * detail::HullData::kCells * detail::HullData::kCells;
+  data->start_table.resize(kTableSize);
+  for (int cell = 0; cell < kTableSize; ++cell) {
+    data->start_table[cell] = detail::scan_support_index(*data, detail::cube_map_direction(cell));
   }
   data_ = std::move(data);
 }
@@ -184,9 +214,9 @@ std::vector<int> ConvexHull::neighbors(int i) const {
           data_->adjacency.begin() + data_->adjacency_offsets[i + 1]};
 }
 
-int ConvexHull::support_index(const Eigen::Vector3d& direction, int hint) const {
-  if (hint < 0 || hint >= static_cast<int>(vertex_count())) hint = -1;
-  detail::HullCore core{data_.get()};
+int ConvexHull::support_index(const Eigen::Vector3d& direction) const {
+  int hint = -1;
+  const detail::HullCore core{data_.get()};
   core.support(direction, hint);
   return hint;
 }

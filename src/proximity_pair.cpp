@@ -60,10 +60,12 @@ void ProximityPair::require_shapes() const {
 bool ProximityPair::in_collision() {
   require_shapes();
   last_iterations_ = 0;
+  last_was_cached_ = true;
   if (verdict_ == Verdict::kUnknown) {
     const detail::Answer answer = detail::query(*shape_a_, pose_a_, *shape_b_, pose_b_,
                                                 detail::QueryKind::kIntersect, options_, &warm_);
     last_iterations_ = answer.iterations;
+    last_was_cached_ = false;
     verdict_ = answer.overlapping ? Verdict::kColliding : Verdict::kSeparated;
   }
   return verdict_ == Verdict::kColliding;
@@ -72,12 +74,14 @@ bool ProximityPair::in_collision() {
 const SignedDistanceResult& ProximityPair::signed_distance() {
   require_shapes();
   last_iterations_ = 0;
+  last_was_cached_ = true;
   if (!signed_distance_) {
     // One GJK run (and EPA when overlapping) answers all three questions.
     const detail::Answer answer =
         detail::query(*shape_a_, pose_a_, *shape_b_, pose_b_, detail::QueryKind::kSignedDistance,
                       options_, &warm_);
     last_iterations_ = answer.iterations;
+    last_was_cached_ = false;
     signed_distance_ = detail::to_signed_distance_result(answer);
     verdict_ = answer.overlapping ? Verdict::kColliding : Verdict::kSeparated;
     if (!penetration_) penetration_ = detail::to_penetration_result(answer);
@@ -94,10 +98,12 @@ const SignedDistanceResult& ProximityPair::signed_distance() {
 const DistanceResult& ProximityPair::distance() {
   require_shapes();
   last_iterations_ = 0;
+  last_was_cached_ = true;
   if (!distance_) {
     const detail::Answer answer = detail::query(*shape_a_, pose_a_, *shape_b_, pose_b_,
                                                 detail::QueryKind::kDistance, options_, &warm_);
     last_iterations_ = answer.iterations;
+    last_was_cached_ = false;
     distance_ = detail::to_distance_result(answer);
     verdict_ = answer.overlapping ? Verdict::kColliding : Verdict::kSeparated;
     if (!answer.overlapping) {  // apart: signed distance and (zero) penetration are known too
@@ -111,9 +117,11 @@ const DistanceResult& ProximityPair::distance() {
 const PenetrationResult& ProximityPair::penetration() {
   require_shapes();
   last_iterations_ = 0;
+  last_was_cached_ = true;
   if (!penetration_) {
     if (verdict_ == Verdict::kSeparated) {
       penetration_ = PenetrationResult{};  // apart: depth 0 (seed figure 14, state 3)
+      last_was_cached_ = false;
     } else {
       signed_distance();  // one GJK + EPA run fills penetration_ and the rest
     }

@@ -56,19 +56,22 @@ TEST(ProximityPair, CachesUntilAPoseOrShapeIsSet) {
   pair.set_shape_a(Sphere(1.0));
   pair.set_shape_b(Sphere(1.0), translation(3, 0, 0));
   EXPECT_NEAR(pair.distance().distance, 1.0, 1e-12);
+  EXPECT_FALSE(pair.last_was_cached());
   EXPECT_GT(pair.last_iterations(), 0);
   pair.distance();
-  EXPECT_EQ(pair.last_iterations(), 0);  // from the cache
+  EXPECT_TRUE(pair.last_was_cached());
+  EXPECT_EQ(pair.last_iterations(), 0);
   EXPECT_FALSE(pair.in_collision());
-  EXPECT_EQ(pair.last_iterations(), 0);
+  EXPECT_TRUE(pair.last_was_cached());
   EXPECT_EQ(pair.penetration().depth, 0.0);  // apart: known without EPA
-  EXPECT_EQ(pair.last_iterations(), 0);
+  EXPECT_TRUE(pair.last_was_cached());
   pair.set_pose_b(translation(1.5, 0, 0));
   EXPECT_TRUE(pair.in_collision());
-  EXPECT_GT(pair.last_iterations(), 0);
+  EXPECT_FALSE(pair.last_was_cached());
   EXPECT_NEAR(pair.penetration().depth, 0.5, 1e-12);
+  EXPECT_FALSE(pair.last_was_cached());
   EXPECT_NEAR(pair.signed_distance().signed_distance, -0.5, 1e-12);
-  EXPECT_EQ(pair.last_iterations(), 0);  // penetration's GJK+EPA run answered it
+  EXPECT_TRUE(pair.last_was_cached());  // penetration's GJK+EPA run answered it
   pair.set_shape_b(Sphere(0.25), translation(1.5, 0, 0));
   EXPECT_NEAR(pair.distance().distance, 0.25, 1e-12);
 }

@@ -22,14 +22,15 @@ struct HullData;
 ///
 /// The support function is exact (it returns a vertex that maximises the dot product). Below
 /// `kHillClimbingThreshold` vertices it scans all vertices; above, it hill-climbs over the vertex
-/// adjacency graph, which on a convex polytope always ends at a global maximum.
+/// adjacency graph, which on a convex polytope always ends at a global maximum, starting from a
+/// precomputed support vertex of a nearby direction (a cube map of 216 directions).
 ///
 /// Copying is cheap: copies share the immutable hull data. Thread-safe for concurrent reads.
 /// Throws InputError for an empty point set or a non-finite coordinate (naming the point index).
 class ConvexHull {
  public:
   /// Hull vertex count from which support uses hill climbing instead of a linear scan.
-  static constexpr std::size_t kHillClimbingThreshold = 48;
+  static constexpr std::size_t kHillClimbingThreshold = 24;
 
   explicit ConvexHull(const std::vector<Eigen::Vector3d>& points);
 
@@ -47,8 +48,8 @@ class ConvexHull {
   double extent() const;
   /// A vertex maximising dot(v, direction) (local frame). Zero direction gives some vertex.
   Eigen::Vector3d support(const Eigen::Vector3d& direction) const;
-  /// Index of such a vertex; `hint` is a starting vertex for hill climbing (any valid index).
-  int support_index(const Eigen::Vector3d& direction, int hint = -1) const;
+  /// Index (into vertices()) of such a vertex.
+  int support_index(const Eigen::Vector3d& direction) const;
 
   const detail::HullData& data() const { return *data_; }
 
@@ -60,13 +61,22 @@ namespace detail {
 /// Immutable hull storage, laid out for the support function.
 struct HullData {
   std::vector<Eigen::Vector3d> vertices;
-  std::vector<double> xs, ys, zs;               // vertices as structure of arrays (linear scan)
+  std::vector<double> xs, ys, zs;  // vertices as structure of arrays, padded to a multiple of 4
   std::vector<std::int32_t> adjacency_offsets;  // CSR: neighbours of i are
   std::vector<std::int32_t> adjacency;          //   adjacency[offsets[i] .. offsets[i+1])
   std::vector<std::array<int, 3>> triangles;
-  std::array<std::int32_t, 8> octant_start{};  // support vertex of (+-1,+-1,+-1), by sign bits
+  /// Hill-climbing starts: the support vertex for the centre direction of each cell of a cube
+  /// map (6 faces x kCells x kCells), so that a climb usually ends within a step or two.
+  static constexpr int kCells = 6;
+  std::vector<std::int32_t> start_table;
   int dimension = 0;
   double extent = 0.0;
+  /// A ball containing the hull, and a ball inside it (radius 0 unless dimension is 3): quick
+  /// proofs of separation and of overlap before GJK.
+  Eigen::Vector3d outer_center{0, 0, 0};
+  double outer_radius = 0.0;
+  Eigen::Vector3d inner_center{0, 0, 0};
+  double inner_radius = 0.0;
 };
 }  // namespace detail
 

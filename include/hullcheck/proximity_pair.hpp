@@ -50,8 +50,11 @@ class ProximityPair {
   const PenetrationResult& penetration();
   const SignedDistanceResult& signed_distance();
 
-  /// GJK iterations spent by the most recent computation (0 when served from the cache).
+  /// GJK (+ EPA) iterations spent by the most recent query (0 when served from the cache, or
+  /// when a bounding-ball test decided it).
   int last_iterations() const { return last_iterations_; }
+  /// Whether the most recent query was answered from the cache, without computation.
+  bool last_was_cached() const { return last_was_cached_; }
   const QueryOptions& options() const { return options_; }
 
  private:
@@ -69,6 +72,7 @@ class ProximityPair {
   std::optional<SignedDistanceResult> signed_distance_;
   detail::WarmStart warm_;
   int last_iterations_ = 0;
+  bool last_was_cached_ = false;
 };
 
 }  // namespace hullcheck

@@ -16,15 +16,34 @@ enum class BooleanVerdict { kApart, kOverlapping, kUndecided };
 
 namespace boolean_gjk {
 
+/// A simplex vertex with only the difference point (plain boolean test).
+struct PointOnly {
+  Eigen::Vector3d w;
+  void set(const Eigen::Vector3d& w_in, const Eigen::Vector3d&, const Eigen::Vector3d&) {
+    w = w_in;
+  }
+};
+
+/// A simplex vertex with the shapes' support points too (when EPA continues from it).
+struct WithParts {
+  Eigen::Vector3d w, a, b;
+  void set(const Eigen::Vector3d& w_in, const Eigen::Vector3d& a_in, const Eigen::Vector3d& b_in) {
+    w = w_in;
+    a = a_in;
+    b = b_in;
+  }
+};
+
 inline Eigen::Vector3d triple(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                               const Eigen::Vector3d& c) {
   return a.cross(b).cross(c);
 }
 
-/// Seed case a on segment (a newest, b): updates the simplex and the direction.
-inline void line(Eigen::Vector3d* s, int& n, Eigen::Vector3d& d) {
-  const Eigen::Vector3d& a = s[0];
-  const Eigen::Vector3d ab = s[1] - a;
+/// Seed case a on segment (s[0] newest, s[1]): updates the simplex and the direction.
+template <class V>
+void line(V* s, int& n, Eigen::Vector3d& d) {
+  const Eigen::Vector3d& a = s[0].w;
+  const Eigen::Vector3d ab = s[1].w - a;
   if (ab.dot(-a) > 0.0) {
     d = triple(ab, -a, ab);  // orthogonal to ab, towards the origin
     n = 2;
@@ -34,12 +53,13 @@ inline void line(Eigen::Vector3d* s, int& n, Eigen::Vector3d& d) {
   }
 }
 
-/// Seed case b on triangle (a newest, b, c).
-inline void triangle(Eigen::Vector3d* s, int& n, Eigen::Vector3d& d) {
-  const Eigen::Vector3d a = s[0];
+/// Seed case b on triangle (s[0] newest, s[1], s[2]).
+template <class V>
+void triangle(V* s, int& n, Eigen::Vector3d& d) {
+  const Eigen::Vector3d a = s[0].w;
   const Eigen::Vector3d ao = -a;
-  const Eigen::Vector3d ab = s[1] - a;
-  const Eigen::Vector3d ac = s[2] - a;
+  const Eigen::Vector3d ab = s[1].w - a;
+  const Eigen::Vector3d ac = s[2].w - a;
   const Eigen::Vector3d abc = ab.cross(ac);
   if (abc.cross(ac).dot(ao) > 0.0) {
     if (ac.dot(ao) > 0.0) {  // edge ac
@@ -64,15 +84,16 @@ inline void triangle(Eigen::Vector3d* s, int& n, Eigen::Vector3d& d) {
   }
 }
 
-/// Seed case c on tetrahedron (a newest, b, c, d) with the origin above triangle (b, c, d)'s
-/// side facing a. Returns true when the origin is enclosed.
-inline bool tetrahedron(Eigen::Vector3d* s, int& n, Eigen::Vector3d& d) {
-  const Eigen::Vector3d a = s[0];
+/// Seed case c on tetrahedron (s[0] newest, then a triangle whose winding faces s[0]).
+/// Returns true when the origin is enclosed.
+template <class V>
+bool tetrahedron(V* s, int& n, Eigen::Vector3d& d) {
+  const Eigen::Vector3d a = s[0].w;
   const Eigen::Vector3d ao = -a;
-  const Eigen::Vector3d ab = s[1] - a;
-  const Eigen::Vector3d ac = s[2] - a;
-  const Eigen::Vector3d ad = s[3] - a;
-  // Faces through a, normals pointing out of the tetrahedron (the winding of (b, c, d) faces a).
+  const Eigen::Vector3d ab = s[1].w - a;
+  const Eigen::Vector3d ac = s[2].w - a;
+  const Eigen::Vector3d ad = s[3].w - a;
+  // Faces through a, normals pointing out of the tetrahedron.
   if (ab.cross(ac).dot(ao) > 0.0) {
     n = 3;
     triangle(s, n, d);
@@ -98,23 +119,22 @@ inline bool tetrahedron(Eigen::Vector3d* s, int& n, Eigen::Vector3d& d) {
 }  // namespace boolean_gjk
 
 /// Runs the boolean GJK from search direction `d` with at most `max_iterations` support calls.
-template <class MD>
+/// On kOverlapping, `s` holds a tetrahedron of support points enclosing the origin.
+template <class MD, class V>
 BooleanVerdict gjk_boolean(MD& md, Eigen::Vector3d d, double radius, int max_iterations,
-                           int& iterations) {
-  Eigen::Vector3d s[4];  // newest first
-  Eigen::Vector3d pa, pb;
+                           int& iterations, V (&s)[4]) {
+  Eigen::Vector3d w, pa, pb;
   if (!(d.squaredNorm() > 0.0)) d = Eigen::Vector3d::UnitX();
   int n = 0;
   for (iterations = 1; iterations <= max_iterations; ++iterations) {
-    Eigen::Vector3d w;
     md.support(d, w, pa, pb);
     const double dw = d.dot(w);
     if (dw < 0.0) {
       if (dw * dw > radius * radius * d.squaredNorm()) return BooleanVerdict::kApart;
       return BooleanVerdict::kUndecided;  // cores apart, but maybe within the radii
     }
-    for (int i = n; i > 0; --i) s[i] = s[i - 1];
-    s[0] = w;
+    for (int i = n; i > 0; --i) s[i] = s[i - 1];  // newest first
+    s[0].set(w, pa, pb);
     ++n;
     switch (n) {
       case 1:

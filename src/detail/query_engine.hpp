@@ -63,6 +63,39 @@ decltype(auto) with_core(const Shape& shape, F&& f) {
   }
 }
 
+/// EPA from a simplex enclosing the origin (any size; grown to a tetrahedron), radii added,
+/// results in the world frame written into `answer` (overlapping, signed distance -depth).
+template <class MD>
+void add_penetration(MD& md, Simplex simplex, double radius_a, double radius_b,
+                     const Eigen::Isometry3d& pose_a, double tolerance,
+                     const QueryOptions& options, Answer& answer) {
+  Eigen::Vector3d flat_normal;
+  EpaOutput e;
+  const Eigen::Vector3d common_point = simplex.point_a();
+  if (epa_initial_tetrahedron(md, simplex, tolerance, flat_normal)) {
+    thread_local EpaWorkspace workspace;
+    e = epa(md, simplex, tolerance, options.max_epa_iterations, workspace);
+  } else {
+    // The difference is flat and contains the origin: depth 0 across its plane.
+    e.depth = 0.0;
+    e.normal = flat_normal;
+    e.point_a = common_point;
+    e.point_b = common_point;
+    e.iterations = 0;
+  }
+  // EPA's normal n is the outward normal of A - B at the nearest boundary point p = a - b;
+  // moving B by p separates, so n points from A to B.
+  answer.overlapping = true;
+  answer.has_geometry = true;
+  answer.epa_iterations = e.iterations;
+  answer.iterations += e.iterations;
+  if (e.status != Status::kConverged) answer.status = e.status;
+  answer.signed_distance = -(e.depth + radius_a + radius_b);
+  answer.normal = pose_a.linear() * e.normal;
+  answer.point_a = pose_a * (e.point_a + radius_a * e.normal);
+  answer.point_b = pose_a * (e.point_b - radius_b * e.normal);
+}
+
 /// Core query between two placed cores. `warm` (optional) supplies and receives the warm start.
 template <class CoreA, class CoreB>
 Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
@@ -86,10 +119,26 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
     md.hint_a = warm->hint_a;
     md.hint_b = warm->hint_b;
   }
+  if (kind == QueryKind::kIntersect || kind == QueryKind::kPenetration) {
+    // Balls around the cores prove separation; balls inside them prove overlap.
+    const Eigen::Vector3d outer_b = md.rotation * core_b.outer_center() + md.translation;
+    const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
+    if ((outer_b - core_a.outer_center()).squaredNorm() > reach * reach) return Answer{};
+    if (kind == QueryKind::kIntersect) {
+      const Eigen::Vector3d inner_b = md.rotation * core_b.inner_center() + md.translation;
+      const double inside = core_a.inner_radius() + core_b.inner_radius() + radius;
+      if ((inner_b - core_a.inner_center()).squaredNorm() < inside * inside) {
+        Answer answer;
+        answer.overlapping = true;
+        return answer;
+      }
+    }
+  }
   if (kind == QueryKind::kIntersect) {
     int boolean_iterations = 0;
+    boolean_gjk::PointOnly simplex[4];
     const BooleanVerdict verdict =
-        gjk_boolean(md, -v0, radius, options.max_gjk_iterations, boolean_iterations);
+        gjk_boolean(md, -v0, radius, options.max_gjk_iterations, boolean_iterations, simplex);
     if (verdict != BooleanVerdict::kUndecided) {
       Answer answer;
       answer.overlapping = verdict == BooleanVerdict::kOverlapping;
@@ -98,6 +147,29 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
         warm->hint_a = md.hint_a;
         warm->hint_b = md.hint_b;
       }
+      return answer;
+    }
+  }
+  if (kind == QueryKind::kPenetration) {
+    // The cheap boolean GJK proves separation or yields a tetrahedron around the origin.
+    boolean_gjk::WithParts tetrahedron[4];
+    int boolean_iterations = 0;
+    const BooleanVerdict verdict =
+        gjk_boolean(md, -v0, radius, options.max_gjk_iterations, boolean_iterations, tetrahedron);
+    if (verdict == BooleanVerdict::kApart) {
+      Answer answer;
+      answer.iterations = boolean_iterations;
+      return answer;
+    }
+    if (verdict == BooleanVerdict::kOverlapping) {
+      Simplex simplex;
+      simplex.size = 4;
+      for (int i = 0; i < 4; ++i) {
+        simplex.set_vertex(i, {tetrahedron[i].w, tetrahedron[i].a, tetrahedron[i].b});
+      }
+      Answer answer;
+      answer.iterations = boolean_iterations;
+      add_penetration(md, simplex, radius_a, radius_b, pose_a, tolerance, options, answer);
       return answer;
     }
   }
@@ -154,29 +226,7 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
     answer.point_a = answer.point_b = pose_a * g.simplex.point_a();
     return answer;
   }
-  Simplex simplex = g.simplex;
-  Eigen::Vector3d flat_normal;
-  EpaOutput e;
-  if (epa_initial_tetrahedron(md, simplex, tolerance, flat_normal)) {
-    thread_local EpaWorkspace workspace;
-    e = epa(md, simplex, tolerance, options.max_epa_iterations, workspace);
-  } else {
-    // The difference is flat and contains the origin: depth 0 across its plane.
-    e.depth = 0.0;
-    e.normal = flat_normal;
-    e.point_a = g.simplex.point_a();
-    e.point_b = e.point_a;
-    e.iterations = 0;
-  }
-  // EPA's normal n is the outward normal of A - B at the nearest boundary point p = a - b;
-  // moving B by p separates, so n points from A to B.
-  answer.epa_iterations = e.iterations;
-  answer.iterations += e.iterations;
-  if (e.status != Status::kConverged) answer.status = e.status;
-  answer.signed_distance = -(e.depth + radius);
-  answer.normal = rotation_a * e.normal;
-  answer.point_a = pose_a * (e.point_a + radius_a * e.normal);
-  answer.point_b = pose_a * (e.point_b - radius_b * e.normal);
+  add_penetration(md, g.simplex, radius_a, radius_b, pose_a, tolerance, options, answer);
   return answer;
 }
 

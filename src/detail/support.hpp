@@ -4,12 +4,21 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+#include <cmath>
 #include <hullcheck/convex_hull.hpp>
 
 namespace hullcheck::detail {
 
 /// A single point at the origin (core of a sphere).
 struct PointCore {
+  Eigen::Vector3d outer_center() const { return Eigen::Vector3d::Zero(); }
+  double outer_radius() const { return 0.0; }
+  Eigen::Vector3d inner_center() const { return Eigen::Vector3d::Zero(); }
+  double inner_radius() const { return 0.0; }
   Eigen::Vector3d support(const Eigen::Vector3d& /*d*/, int& /*hint*/) const {
     return Eigen::Vector3d::Zero();
   }
@@ -18,6 +27,10 @@ struct PointCore {
 /// Segment from (0,0,-h) to (0,0,h) (core of a capsule).
 struct SegmentCore {
   double half_length;
+  Eigen::Vector3d outer_center() const { return Eigen::Vector3d::Zero(); }
+  double outer_radius() const { return half_length; }
+  Eigen::Vector3d inner_center() const { return Eigen::Vector3d::Zero(); }
+  double inner_radius() const { return 0.0; }
   Eigen::Vector3d support(const Eigen::Vector3d& d, int& /*hint*/) const {
     return {0.0, 0.0, d.z() >= 0.0 ? half_length : -half_length};
   }
@@ -26,6 +39,10 @@ struct SegmentCore {
 /// Axis-aligned box with half extents.
 struct BoxCore {
   Eigen::Vector3d half;
+  Eigen::Vector3d outer_center() const { return Eigen::Vector3d::Zero(); }
+  double outer_radius() const { return half.norm(); }
+  Eigen::Vector3d inner_center() const { return Eigen::Vector3d::Zero(); }
+  double inner_radius() const { return half.minCoeff(); }
   Eigen::Vector3d support(const Eigen::Vector3d& d, int& /*hint*/) const {
     return {d.x() >= 0.0 ? half.x() : -half.x(), d.y() >= 0.0 ? half.y() : -half.y(),
             d.z() >= 0.0 ? half.z() : -half.z()};
@@ -36,6 +53,10 @@ struct BoxCore {
 struct CylinderCore {
   double radius;
   double half_length;
+  Eigen::Vector3d outer_center() const { return Eigen::Vector3d::Zero(); }
+  double outer_radius() const { return std::sqrt(radius * radius + half_length * half_length); }
+  Eigen::Vector3d inner_center() const { return Eigen::Vector3d::Zero(); }
+  double inner_radius() const { return std::min(radius, half_length); }
   Eigen::Vector3d support(const Eigen::Vector3d& d, int& /*hint*/) const {
     const double z = d.z() >= 0.0 ? half_length : -half_length;
     const double rxy2 = d.x() * d.x() + d.y() * d.y();
@@ -46,12 +67,37 @@ struct CylinderCore {
 };
 
 /// Index of the vertex maximising dot(v, d): linear scan over the structure-of-arrays copy.
+/// Two passes: the maximum value (two vertices per SSE2 instruction), then the first vertex
+/// reaching it, computed with the same arithmetic so the values compare bit for bit. The arrays
+/// are padded to a multiple of 4 with copies of vertex 0, which cannot change the answer.
 inline int scan_support_index(const HullData& h, const Eigen::Vector3d& d) {
   const double* xs = h.xs.data();
   const double* ys = h.ys.data();
   const double* zs = h.zs.data();
-  const int n = static_cast<int>(h.xs.size());
+  const int n = static_cast<int>(h.vertices.size());
   const double dx = d.x(), dy = d.y(), dz = d.z();
+#if defined(__SSE2__)
+  const int padded = static_cast<int>(h.xs.size());
+  const __m128d vdx = _mm_set1_pd(dx), vdy = _mm_set1_pd(dy), vdz = _mm_set1_pd(dz);
+  __m128d m0 = _mm_set1_pd(-INFINITY), m1 = m0;
+  for (int i = 0; i < padded; i += 4) {
+    const __m128d v0 = _mm_add_pd(
+        _mm_add_pd(_mm_mul_pd(_mm_loadu_pd(xs + i), vdx), _mm_mul_pd(_mm_loadu_pd(ys + i), vdy)),
+        _mm_mul_pd(_mm_loadu_pd(zs + i), vdz));
+    const __m128d v1 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_loadu_pd(xs + i + 2), vdx),
+                                             _mm_mul_pd(_mm_loadu_pd(ys + i + 2), vdy)),
+                                  _mm_mul_pd(_mm_loadu_pd(zs + i + 2), vdz));
+    m0 = _mm_max_pd(m0, v0);
+    m1 = _mm_max_pd(m1, v1);
+  }
+  const __m128d m = _mm_max_pd(m0, m1);
+  const double maximum = std::max(_mm_cvtsd_f64(m), _mm_cvtsd_f64(_mm_unpackhi_pd(m, m)));
+  for (int i = 0; i < n; ++i) {
+    if ((xs[i] * dx + ys[i] * dy) + zs[i] * dz == maximum) return i;
+  }
+  // Not reached unless the compiler fused the scalar arithmetic differently (or d is NaN):
+  // fall through to the plain argmax.
+#endif
   int best = 0;
   double best_value = xs[0] * dx + ys[0] * dy + zs[0] * dz;
   for (int i = 1; i < n; ++i) {
@@ -92,19 +138,65 @@ inline int climb_support_index(const HullData& h, const Eigen::Vector3d& d, int 
   }
 }
 
-inline int octant_of(const Eigen::Vector3d& d) {
-  return (d.x() >= 0.0 ? 1 : 0) | (d.y() >= 0.0 ? 2 : 0) | (d.z() >= 0.0 ? 4 : 0);
+/// Cube-map cell of a direction: the face of its largest component, then a kCells x kCells
+/// grid over that face. Cells are indexed face * kCells^2 + row * kCells + column.
+inline int cube_map_cell(const Eigen::Vector3d& d) {
+  constexpr int k = HullData::kCells;
+  const double ax = std::abs(d.x()), ay = std::abs(d.y()), az = std::abs(d.z());
+  int face;
+  double u, v, m;
+  if (ax >= ay && ax >= az) {
+    face = d.x() >= 0.0 ? 0 : 1;
+    u = d.y();
+    v = d.z();
+    m = ax;
+  } else if (ay >= az) {
+    face = d.y() >= 0.0 ? 2 : 3;
+    u = d.x();
+    v = d.z();
+    m = ay;
+  } else {
+    face = d.z() >= 0.0 ? 4 : 5;
+    u = d.x();
+    v = d.y();
+    m = az;
+  }
+  if (!(m > 0.0)) return 0;
+  const double scale = 0.5 * k / m;  // u/m in [-1, 1] -> [0, k]
+  const int row = std::min(k - 1, static_cast<int>((u + m) * scale));
+  const int column = std::min(k - 1, static_cast<int>((v + m) * scale));
+  return (face * k + row) * k + column;
 }
 
-/// Convex hull core; `hint` carries the last support vertex between calls (warm start).
+/// Centre direction of a cube-map cell (inverse of cube_map_cell).
+inline Eigen::Vector3d cube_map_direction(int cell) {
+  constexpr int k = HullData::kCells;
+  const int face = cell / (k * k), row = (cell / k) % k, column = cell % k;
+  const double u = (row + 0.5) * 2.0 / k - 1.0, v = (column + 0.5) * 2.0 / k - 1.0;
+  const double sign = face % 2 == 0 ? 1.0 : -1.0;
+  switch (face / 2) {
+    case 0:
+      return {sign, u, v};
+    case 1:
+      return {u, sign, v};
+    default:
+      return {u, v, sign};
+  }
+}
+
+/// Convex hull core; `hint` receives the support vertex index.
 struct HullCore {
   const HullData* data;
+  const Eigen::Vector3d& outer_center() const { return data->outer_center; }
+  double outer_radius() const { return data->outer_radius; }
+  const Eigen::Vector3d& inner_center() const { return data->inner_center; }
+  double inner_radius() const { return data->inner_radius; }
   Eigen::Vector3d support(const Eigen::Vector3d& d, int& hint) const {
     const HullData& h = *data;
-    if (h.xs.size() < ConvexHull::kHillClimbingThreshold) {
+    if (h.vertices.size() < ConvexHull::kHillClimbingThreshold) {
       hint = scan_support_index(h, d);
     } else {
-      hint = climb_support_index(h, d, hint >= 0 ? hint : h.octant_start[octant_of(d)]);
+      hint = climb_support_index(h, d, h.start_table[cube_map_cell(d)]);
     }
     return h.vertices[hint];
   }
