@@ -1,5 +1,6 @@
-#include <hullcheck/pose.hpp>
+#include <hullcheck/errors.hpp>
 #include <hullcheck/queries.hpp>
+#include <string>
 
 #include "detail/query_engine.hpp"
 
@@ -7,11 +8,20 @@ namespace hullcheck {
 
 namespace {
 
+/// Poses must be rigid (see validate_pose); per query only finiteness is checked, which is
+/// what an upstream computation most often gets wrong, at a cost of a few instructions.
+void require_finite(const Eigen::Isometry3d& pose, const char* what) {
+  // x * 0 is 0 for every finite x and NaN for NaN or infinity: one branch for all 12 entries.
+  if (!((pose.matrix().topRows<3>() * 0.0).sum() == 0.0)) {
+    throw InputError(std::string(what) + ": pose contains NaN or infinity");
+  }
+}
+
 detail::Answer checked_query(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                              const Eigen::Isometry3d& pose_b, detail::QueryKind kind,
                              const QueryOptions& options) {
-  validate_pose(pose_a, "pose_a");
-  validate_pose(pose_b, "pose_b");
+  require_finite(pose_a, "pose_a");
+  require_finite(pose_b, "pose_b");
   return detail::query(a, pose_a, b, pose_b, kind, options, nullptr);
 }
 

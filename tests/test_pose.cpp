@@ -31,8 +31,15 @@ TEST(Pose, NonFiniteOrNonRigidPosesAreRejected) {
   const Shape s = Sphere(1.0);
   EXPECT_THROW(intersect(s, nan_pose, s, id), InputError);
   EXPECT_THROW(distance(s, id, s, nan_pose), InputError);
-  EXPECT_THROW(penetration(s, scaled, s, id), InputError);
-  EXPECT_THROW(signed_distance(s, id, s, mirrored), InputError);
+  EXPECT_THROW(penetration(s, id, s, nan_pose), InputError);
+  EXPECT_THROW(signed_distance(s, nan_pose, s, id), InputError);
+  EXPECT_THROW(validate_pose(scaled, "scaled"), InputError);
+  EXPECT_THROW(validate_pose(mirrored, "mirrored"), InputError);
+  EXPECT_NO_THROW(validate_pose(pose_from_xyz_angles({1, 2, 3}, {0.1, 0.2, 0.3}), "rigid"));
+  ProximityPair pair;
+  EXPECT_THROW(pair.set_shape_a(s, scaled), InputError);
+  EXPECT_THROW(pair.set_shape_b(s, mirrored), InputError);
+  EXPECT_THROW(pair.set_pose_a(nan_pose), InputError);
   EXPECT_THROW(pose_from_xyz_angles({0, 0, 0}, {0, INFINITY, 0}), InputError);
   try {
     distance(s, id, s, nan_pose);

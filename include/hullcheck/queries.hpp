@@ -3,7 +3,8 @@
 // Frames: each shape is given in its local frame and placed by its pose (local -> world);
 // every returned point and vector is in the world frame. Units: those of the shapes (metres).
 // Tolerances: see QueryOptions. Thread-safety: all functions are reentrant and allocate nothing.
-// Errors: a pose with NaN/inf or a non-rotation linear part throws InputError.
+// Poses must be rigid (rotation + translation; validate_pose() checks that, and ProximityPair
+// does on every set). Errors: a pose with NaN/inf throws InputError.
 #pragma once
 
 #include <Eigen/Geometry>

@@ -44,12 +44,15 @@ GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int ma
     md.support(-v, s.w[k], s.a[k], s.b[k]);
     if (k > 0) {
       // v is a point of the difference: |v| bounds the distance from above, and the support
-      // plane through w bounds it from below.
-      const double v_norm = std::sqrt(best_distance_squared);
-      const double bound = v.dot(s.w[k]) / v_norm;
-      if (bound > lower) lower = bound;
+      // plane through w bounds it from below by v.w / |v|.
+      const double vw = v.dot(s.w[k]);
+      if (vw > 0.0 && vw * vw > lower * lower * best_distance_squared) {
+        lower = vw / std::sqrt(best_distance_squared);
+      }
       if (goal != GjkGoal::kDistance && lower > radius) break;  // separating plane found
-      if (v_norm - lower <= tolerance) break;                   // converged
+      // Converged when |v| - lower <= tolerance, i.e. |v|^2 <= (lower + tolerance)^2.
+      const double reach = lower + tolerance;
+      if (best_distance_squared <= reach * reach) break;
     }
     ++s.size;
     SubSimplex sub;

@@ -67,8 +67,8 @@ decltype(auto) with_core(const Shape& shape, F&& f) {
 /// results in the world frame written into `answer` (overlapping, signed distance -depth).
 template <class MD>
 void add_penetration(MD& md, Simplex simplex, double radius_a, double radius_b,
-                     const Eigen::Isometry3d& pose_a, double tolerance,
-                     const QueryOptions& options, Answer& answer) {
+                     const Eigen::Isometry3d& pose_a, double tolerance, const QueryOptions& options,
+                     Answer& answer) {
   Eigen::Vector3d flat_normal;
   EpaOutput e;
   const Eigen::Vector3d common_point = simplex.point_a();
@@ -120,18 +120,27 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
     md.hint_b = warm->hint_b;
   }
   if (kind == QueryKind::kIntersect || kind == QueryKind::kPenetration) {
-    // Balls around the cores prove separation; balls inside them prove overlap.
+    // Balls around the cores prove separation.
     const Eigen::Vector3d outer_b = md.rotation * core_b.outer_center() + md.translation;
     const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
     if ((outer_b - core_a.outer_center()).squaredNorm() > reach * reach) return Answer{};
-    if (kind == QueryKind::kIntersect) {
-      const Eigen::Vector3d inner_b = md.rotation * core_b.inner_center() + md.translation;
-      const double inside = core_a.inner_radius() + core_b.inner_radius() + radius;
-      if ((inner_b - core_a.inner_center()).squaredNorm() < inside * inside) {
-        Answer answer;
-        answer.overlapping = true;
-        return answer;
+  }
+  if (kind == QueryKind::kIntersect || kind == QueryKind::kDistance) {
+    // Balls inside the shapes prove overlap; the point dividing their centres in the ratio of
+    // their radii is inside both.
+    const double inner_a = core_a.inner_radius() + radius_a;
+    const double inside = inner_a + core_b.inner_radius() + radius_b;
+    const Eigen::Vector3d centre_b = md.rotation * core_b.inner_center() + md.translation;
+    const Eigen::Vector3d offset = centre_b - core_a.inner_center();
+    if (offset.squaredNorm() < inside * inside) {
+      Answer answer;
+      answer.overlapping = true;
+      if (kind == QueryKind::kDistance) {
+        answer.has_geometry = true;
+        answer.point_a = answer.point_b =
+            pose_a * (core_a.inner_center() + (inner_a / inside) * offset);
       }
+      return answer;
     }
   }
   if (kind == QueryKind::kIntersect) {
