@@ -215,10 +215,10 @@ std::vector<int> ConvexHull::neighbors(int i) const {
 }
 
 int ConvexHull::support_index(const Eigen::Vector3d& direction) const {
-  int hint = -1;
+  int index = -1;
   const detail::HullCore core{data_.get()};
-  core.support(direction, hint);
-  return hint;
+  core.support(direction, index);
+  return index;
 }
 
 Eigen::Vector3d ConvexHull::support(const Eigen::Vector3d& direction) const {

@@ -17,7 +17,7 @@ void ProximityPair::set_shape_a(const Shape& shape, const Eigen::Isometry3d& pos
   validate_pose(pose, "ProximityPair::set_shape_a");
   shape_a_ = shape;
   pose_a_ = pose;
-  warm_ = detail::WarmStart{};  // hull vertex hints belong to the old shape
+  warm_ = detail::WarmStart{};  // vertex indices belong to the old shape
   invalidate();
 }
 

@@ -19,8 +19,8 @@ double Shape::bounding_radius() const {
 
 Eigen::Vector3d Shape::support(const Eigen::Vector3d& direction) const {
   return detail::with_core(*this, [&](const auto& core, double radius) -> Eigen::Vector3d {
-    int hint = -1;
-    const Eigen::Vector3d p = core.support(direction, hint);
+    int index = -1;
+    const Eigen::Vector3d p = core.support(direction, index);
     const double length = direction.norm();
     if (radius == 0.0 || !(length > 0.0)) return p;
     return p + (radius / length) * direction;

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "oracles.hpp"
+#include "rng.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define HULLCHECK_TEST_SANITIZED 1
@@ -64,40 +65,7 @@ int pair_count(int n) { return std::max(1, n / kCountDivisor); }
 // ------------------------------------------------------------------------------------------
 // Random numbers (own uniform: identical on every platform)
 
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : gen_(seed) {}
-  std::uint64_t bits() { return gen_(); }
-  double uniform() { return static_cast<double>(gen_() >> 11) * 0x1.0p-53; }
-  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-  int integer(int lo, int hi) {  // inclusive
-    return lo + static_cast<int>(gen_() % static_cast<std::uint64_t>(hi - lo + 1));
-  }
-  bool coin(double p = 0.5) { return uniform() < p; }
-  double normal() {
-    const double u1 = 1.0 - uniform();
-    const double u2 = uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
-  }
-  Vector3d unit_vector() {
-    for (;;) {
-      const Vector3d v(normal(), normal(), normal());
-      if (v.norm() > 1e-6) return v.normalized();
-    }
-  }
-  Eigen::Matrix3d rotation() {
-    for (;;) {
-      Eigen::Quaterniond q(normal(), normal(), normal(), normal());
-      if (q.norm() > 1e-6) return q.normalized().toRotationMatrix();
-    }
-  }
-  Vector3d in_box(double half) {
-    return Vector3d(uniform(-half, half), uniform(-half, half), uniform(-half, half));
-  }
-
- private:
-  std::mt19937_64 gen_;
-};
+using hullcheck::oracle::Rng;
 
 // ------------------------------------------------------------------------------------------
 // Shapes (local point sets)

@@ -8,12 +8,14 @@ namespace hullcheck {
 
 namespace detail {
 /// What one query leaves for the next on a nearby pose: the last separating direction (in A's
-/// local frame) and the last support vertices of hull shapes.
+/// local frame) and, for two hulls, the final GJK simplex as pairs of hull vertex indices,
+/// which the next query re-evaluates at the new poses and starts from.
 struct WarmStart {
   Eigen::Vector3d direction{0, 0, 0};
-  int hint_a = -1;
-  int hint_b = -1;
   bool valid = false;
+  int simplex_size = 0;
+  int index_a[4] = {-1, -1, -1, -1};
+  int index_b[4] = {-1, -1, -1, -1};
 };
 }  // namespace detail
 

@@ -30,18 +30,66 @@ struct GjkOutput {
 /// direction or the vector between the shapes' origins). `radius` is the sum of the shapes'
 /// radii (boolean goal: shapes overlap when the core distance is <= radius). `tolerance` is the
 /// absolute convergence tolerance. Never more than `max_iterations` support calls.
+/// Reduces simplex `s` (its newest vertex last) to the sub-simplex nearest the origin and sets
+/// its weights (seed cases a, b, c). Returns false when the origin is inside a tetrahedron.
+inline bool reduce_simplex(Simplex& s) {
+  SubSimplex sub;
+  switch (s.size) {
+    case 1:
+      sub = SubSimplex{{0, 0, 0, 0}, {1.0, 0, 0, 0}, 1, s.w[0].squaredNorm()};
+      break;
+    case 2:
+      sub = closest_on_segment(s.w, 0, 1);
+      break;
+    case 3:
+      sub = closest_on_triangle(s.w, 0, 1, 2);
+      break;
+    default:
+      sub = closest_on_tetrahedron(s.w);
+      break;
+  }
+  // Keep the vertices of the closest region, in place (indices are ascending).
+  for (int i = 0; i < sub.size; ++i) {
+    const int from = sub.index[i];
+    if (from != i) {
+      s.w[i] = s.w[from];
+      s.a[i] = s.a[from];
+      s.b[i] = s.b[from];
+      s.index_a[i] = s.index_a[from];
+      s.index_b[i] = s.index_b[from];
+    }
+    s.lambda[i] = sub.lambda[i];
+  }
+  s.size = sub.size;
+  return s.size < 4;
+}
+
+/// `initial` (optional, warm start): a simplex of support points to start from instead of
+/// the single point in direction -v.
 template <class MD>
 GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int max_iterations,
-              GjkGoal goal) {
+              GjkGoal goal, const Simplex* initial = nullptr) {
   GjkOutput out;
   Simplex& s = out.simplex;
   if (!(v.squaredNorm() > 0.0)) v = Eigen::Vector3d::UnitX();
   double best_distance_squared = INFINITY;
   double lower = 0.0;
+  if (initial != nullptr && initial->size > 0) {
+    s = *initial;
+    if (!reduce_simplex(s)) {
+      out.cores_overlap = true;
+      out.v.setZero();
+      return out;
+    }
+    v = s.closest_point();
+    best_distance_squared = v.squaredNorm();
+  }
   for (int iteration = 1; iteration <= max_iterations; ++iteration) {
     out.iterations = iteration;
     const int k = s.size;
     md.support(-v, s.w[k], s.a[k], s.b[k]);
+    s.index_a[k] = md.index_a;
+    s.index_b[k] = md.index_b;
     if (k > 0) {
       // v is a point of the difference: |v| bounds the distance from above, and the support
       // plane through w bounds it from below by v.w / |v|.
@@ -55,32 +103,7 @@ GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int ma
       if (best_distance_squared <= reach * reach) break;
     }
     ++s.size;
-    SubSimplex sub;
-    switch (s.size) {
-      case 1:
-        sub = SubSimplex{{0, 0, 0, 0}, {1.0, 0, 0, 0}, 1, s.w[0].squaredNorm()};
-        break;
-      case 2:
-        sub = closest_on_segment(s.w, 0, 1);
-        break;
-      case 3:
-        sub = closest_on_triangle(s.w, 0, 1, 2);
-        break;
-      default:
-        sub = closest_on_tetrahedron(s.w);
-        break;
-    }
-    // Keep the vertices of the closest region, in place (indices are ascending).
-    for (int i = 0; i < sub.size; ++i) {
-      const int from = sub.index[i];
-      if (from != i) {
-        s.w[i] = s.w[from];
-        s.a[i] = s.a[from];
-        s.b[i] = s.b[from];
-      }
-      s.lambda[i] = sub.lambda[i];
-    }
-    s.size = sub.size;
+    reduce_simplex(s);
     if (s.size == 4) {  // origin inside the tetrahedron
       out.cores_overlap = true;
       v.setZero();

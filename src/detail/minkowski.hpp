@@ -7,8 +7,8 @@
 
 namespace hullcheck::detail {
 
-/// A - B with B placed relative to A: x_A = rotation * x_B + translation. Keeps the hull
-/// support hints of both cores so successive support calls start near the last answer.
+/// A - B with B placed relative to A: x_A = rotation * x_B + translation. After each support
+/// call, index_a and index_b hold the hull vertices it returned (-1 for other cores).
 template <class CoreA, class CoreB>
 struct MinkowskiDifference {
   const CoreA& a;
@@ -16,8 +16,8 @@ struct MinkowskiDifference {
   Eigen::Matrix3d rotation;     // B's frame to A's frame
   Eigen::Matrix3d rotation_t;   // A's frame to B's frame
   Eigen::Vector3d translation;  // B's origin in A's frame
-  int hint_a = -1;
-  int hint_b = -1;
+  int index_a = -1;
+  int index_b = -1;
 
   MinkowskiDifference(const CoreA& core_a, const CoreB& core_b, const Eigen::Matrix3d& b_to_a,
                       const Eigen::Vector3d& b_origin_in_a)
@@ -30,8 +30,8 @@ struct MinkowskiDifference {
   /// Support point w = pa - pb of A - B in direction d (A's frame), with its parts.
   void support(const Eigen::Vector3d& d, Eigen::Vector3d& w, Eigen::Vector3d& pa,
                Eigen::Vector3d& pb) {
-    pa = a.support(d, hint_a);
-    pb.noalias() = rotation * b.support(rotation_t * (-d), hint_b);
+    pa = a.support(d, index_a);
+    pb.noalias() = rotation * b.support(rotation_t * (-d), index_b);
     pb += translation;
     w = pa - pb;
   }

@@ -114,10 +114,20 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   const double tolerance = std::max(options.relative_tolerance * scale, rounding);
 
   Eigen::Vector3d v0 = -md.translation;  // A's origin minus B's: inside the difference
+  Simplex warm_simplex;
   if (warm != nullptr && warm->valid) {
     v0 = warm->direction;
-    md.hint_a = warm->hint_a;
-    md.hint_b = warm->hint_b;
+    if constexpr (CoreA::kIndexed && CoreB::kIndexed) {
+      // Re-evaluate the last simplex's vertex pairs at the new poses.
+      warm_simplex.size = warm->simplex_size;
+      for (int i = 0; i < warm_simplex.size; ++i) {
+        warm_simplex.index_a[i] = warm->index_a[i];
+        warm_simplex.index_b[i] = warm->index_b[i];
+        warm_simplex.a[i] = core_a.vertex(warm->index_a[i]);
+        warm_simplex.b[i] = md.rotation * core_b.vertex(warm->index_b[i]) + md.translation;
+        warm_simplex.w[i] = warm_simplex.a[i] - warm_simplex.b[i];
+      }
+    }
   }
   if (kind == QueryKind::kIntersect || kind == QueryKind::kPenetration) {
     // Balls around the cores prove separation.
@@ -152,10 +162,6 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
       Answer answer;
       answer.overlapping = verdict == BooleanVerdict::kOverlapping;
       answer.iterations = boolean_iterations;
-      if (warm != nullptr) {
-        warm->hint_a = md.hint_a;
-        warm->hint_b = md.hint_b;
-      }
       return answer;
     }
   }
@@ -185,18 +191,23 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   const GjkGoal goal = kind == QueryKind::kIntersect     ? GjkGoal::kBoolean
                        : kind == QueryKind::kPenetration ? GjkGoal::kPenetration
                                                          : GjkGoal::kDistance;
-  const GjkOutput g = gjk(md, v0, radius, tolerance, options.max_gjk_iterations, goal);
+  const GjkOutput g = gjk(md, v0, radius, tolerance, options.max_gjk_iterations, goal,
+                          warm_simplex.size > 0 ? &warm_simplex : nullptr);
 
   Answer answer;
   answer.iterations = g.iterations;
   answer.status = g.status;
   if (warm != nullptr) {
-    if (g.distance > 0.0) {  // keep the previous direction when the cores overlap
-      warm->direction = g.v;
-      warm->valid = true;
+    if (g.distance > 0.0) warm->direction = g.v;  // else keep the last separating direction
+    warm->valid = true;
+    warm->simplex_size = 0;
+    for (int i = 0; i < g.simplex.size; ++i) {
+      if (g.simplex.index_a[i] < 0 || g.simplex.index_b[i] < 0) break;  // curved core
+      warm->index_a[i] = g.simplex.index_a[i];
+      warm->index_b[i] = g.simplex.index_b[i];
+      warm->simplex_size = i + 1;
     }
-    warm->hint_a = md.hint_a;
-    warm->hint_b = md.hint_b;
+    if (warm->simplex_size < g.simplex.size) warm->simplex_size = 0;
   }
   if (kind == QueryKind::kIntersect) {
     answer.overlapping = g.cores_overlap || g.distance <= radius ||

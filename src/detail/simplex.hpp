@@ -24,6 +24,8 @@ struct SimplexVertex {
 /// closest point to the origin.
 struct Simplex {
   Eigen::Vector3d w[4], a[4], b[4];
+  int index_a[4] = {-1, -1, -1, -1};  // hull vertex behind a[i] (-1: not a hull)
+  int index_b[4] = {-1, -1, -1, -1};
   double lambda[4] = {1.0, 0.0, 0.0, 0.0};
   int size = 0;
 

@@ -13,51 +13,68 @@
 
 namespace hullcheck::detail {
 
+// Each core's support(d, index) returns a maximiser of dot(p, d) and sets `index` to the
+// vertex it is, for cores with finitely many vertices (vertex(index) gives it back; the warm
+// start re-evaluates simplices from them); curved cores leave `index` unchanged.
+
 /// A single point at the origin (core of a sphere).
 struct PointCore {
+  static constexpr bool kIndexed = true;
+  Eigen::Vector3d vertex(int /*index*/) const { return Eigen::Vector3d::Zero(); }
   Eigen::Vector3d outer_center() const { return Eigen::Vector3d::Zero(); }
   double outer_radius() const { return 0.0; }
   Eigen::Vector3d inner_center() const { return Eigen::Vector3d::Zero(); }
   double inner_radius() const { return 0.0; }
-  Eigen::Vector3d support(const Eigen::Vector3d& /*d*/, int& /*hint*/) const {
+  Eigen::Vector3d support(const Eigen::Vector3d& /*d*/, int& index) const {
+    index = 0;
     return Eigen::Vector3d::Zero();
   }
 };
 
 /// Segment from (0,0,-h) to (0,0,h) (core of a capsule).
 struct SegmentCore {
+  static constexpr bool kIndexed = true;
   double half_length;
+  Eigen::Vector3d vertex(int index) const { return {0.0, 0.0, index ? half_length : -half_length}; }
   Eigen::Vector3d outer_center() const { return Eigen::Vector3d::Zero(); }
   double outer_radius() const { return half_length; }
   Eigen::Vector3d inner_center() const { return Eigen::Vector3d::Zero(); }
   double inner_radius() const { return 0.0; }
-  Eigen::Vector3d support(const Eigen::Vector3d& d, int& /*hint*/) const {
-    return {0.0, 0.0, d.z() >= 0.0 ? half_length : -half_length};
+  Eigen::Vector3d support(const Eigen::Vector3d& d, int& index) const {
+    index = d.z() >= 0.0 ? 1 : 0;
+    return vertex(index);
   }
 };
 
 /// Axis-aligned box with half extents.
 struct BoxCore {
+  static constexpr bool kIndexed = true;
   Eigen::Vector3d half;
+  /// Corner by sign bits: bit 0 set for +x, bit 1 for +y, bit 2 for +z.
+  Eigen::Vector3d vertex(int index) const {
+    return {index & 1 ? half.x() : -half.x(), index & 2 ? half.y() : -half.y(),
+            index & 4 ? half.z() : -half.z()};
+  }
   Eigen::Vector3d outer_center() const { return Eigen::Vector3d::Zero(); }
   double outer_radius() const { return half.norm(); }
   Eigen::Vector3d inner_center() const { return Eigen::Vector3d::Zero(); }
   double inner_radius() const { return half.minCoeff(); }
-  Eigen::Vector3d support(const Eigen::Vector3d& d, int& /*hint*/) const {
-    return {d.x() >= 0.0 ? half.x() : -half.x(), d.y() >= 0.0 ? half.y() : -half.y(),
-            d.z() >= 0.0 ? half.z() : -half.z()};
+  Eigen::Vector3d support(const Eigen::Vector3d& d, int& index) const {
+    index = (d.x() >= 0.0 ? 1 : 0) | (d.y() >= 0.0 ? 2 : 0) | (d.z() >= 0.0 ? 4 : 0);
+    return vertex(index);
   }
 };
 
 /// Solid cylinder, axis z.
 struct CylinderCore {
+  static constexpr bool kIndexed = false;
   double radius;
   double half_length;
   Eigen::Vector3d outer_center() const { return Eigen::Vector3d::Zero(); }
   double outer_radius() const { return std::sqrt(radius * radius + half_length * half_length); }
   Eigen::Vector3d inner_center() const { return Eigen::Vector3d::Zero(); }
   double inner_radius() const { return std::min(radius, half_length); }
-  Eigen::Vector3d support(const Eigen::Vector3d& d, int& /*hint*/) const {
+  Eigen::Vector3d support(const Eigen::Vector3d& d, int& /*index*/) const {
     const double z = d.z() >= 0.0 ? half_length : -half_length;
     const double rxy2 = d.x() * d.x() + d.y() * d.y();
     if (rxy2 <= 0.0) return {0.0, 0.0, z};
@@ -184,21 +201,23 @@ inline Eigen::Vector3d cube_map_direction(int cell) {
   }
 }
 
-/// Convex hull core; `hint` receives the support vertex index.
+/// Convex hull core.
 struct HullCore {
+  static constexpr bool kIndexed = true;
   const HullData* data;
+  const Eigen::Vector3d& vertex(int index) const { return data->vertices[index]; }
   const Eigen::Vector3d& outer_center() const { return data->outer_center; }
   double outer_radius() const { return data->outer_radius; }
   const Eigen::Vector3d& inner_center() const { return data->inner_center; }
   double inner_radius() const { return data->inner_radius; }
-  Eigen::Vector3d support(const Eigen::Vector3d& d, int& hint) const {
+  Eigen::Vector3d support(const Eigen::Vector3d& d, int& index) const {
     const HullData& h = *data;
     if (h.vertices.size() < ConvexHull::kHillClimbingThreshold) {
-      hint = scan_support_index(h, d);
+      index = scan_support_index(h, d);
     } else {
-      hint = climb_support_index(h, d, h.start_table[cube_map_cell(d)]);
+      index = climb_support_index(h, d, h.start_table[cube_map_cell(d)]);
     }
-    return h.vertices[hint];
+    return h.vertices[index];
   }
 };
 

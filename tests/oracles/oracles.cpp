@@ -20,6 +20,8 @@
 #include <string>
 #include <utility>
 
+#include "rng.hpp"
+
 namespace hullcheck::oracle {
 namespace {
 
@@ -587,35 +589,6 @@ void build_minkowski(const Polytope& A, const Polytope& B, MinkowskiHull* M) {
 // ------------------------------------------------------------------------------------------
 // Random numbers, identical on every platform (no std distributions)
 
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : gen_(seed) {}
-  std::uint64_t bits() { return gen_(); }
-  double uniform() { return static_cast<double>(gen_() >> 11) * 0x1.0p-53; }
-  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-  double normal() {
-    const double u1 = 1.0 - uniform();  // (0, 1]
-    const double u2 = uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
-  }
-  Vec3 unit_vector() {
-    for (;;) {
-      const Vec3 v(normal(), normal(), normal());
-      const double len = v.norm();
-      if (len > 1e-6) return v / len;
-    }
-  }
-  Eigen::Quaterniond rotation() {
-    for (;;) {
-      Eigen::Quaterniond q(normal(), normal(), normal(), normal());
-      if (q.norm() > 1e-6) return q.normalized();
-    }
-  }
-
- private:
-  std::mt19937_64 gen_;
-};
-
 }  // namespace
 
 // ------------------------------------------------------------------------------------------
@@ -733,8 +706,8 @@ std::vector<Eigen::Vector3d> random_hull_points(std::uint64_t seed, int n, doubl
   Rng rng(seed);
   const Vec3 axes(size * rng.uniform(0.5, 1.0), size * rng.uniform(0.5, 1.0),
                   size * rng.uniform(0.5, 1.0));
-  const Eigen::Quaterniond lattice = rng.rotation();
-  const Eigen::Quaterniond orientation = rng.rotation();
+  const Eigen::Quaterniond lattice = rng.quaternion();
+  const Eigen::Quaterniond orientation = rng.quaternion();
   // Fibonacci lattice on the unit sphere (evenly spread, so all points are clearly vertices),
   // jittered, then stretched onto the ellipsoid: every point is a hull vertex.
   const double golden = kPi * (3.0 - std::sqrt(5.0));
@@ -770,7 +743,7 @@ std::vector<HullPair> make_hull_pairs(std::uint64_t seed, int count, int vertice
     HullPair pair;
     pair.a = random_hull_points(rng.bits(), vertices, size);
     pair.b = random_hull_points(rng.bits(), vertices, size);
-    pair.pose_a.linear() = rng.rotation().toRotationMatrix();
+    pair.pose_a.linear() = rng.quaternion().toRotationMatrix();
     pair.pose_a.translation() =
         size * Vec3(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2));
     const std::vector<Vec3> world_a = transformed(pair.a, pair.pose_a);
@@ -779,7 +752,7 @@ std::vector<HullPair> make_hull_pairs(std::uint64_t seed, int count, int vertice
     // place inside (overlap) or beyond (separation) the interval where the two overlap.
     for (int attempt = 0;; ++attempt) {
       Eigen::Isometry3d pose_b = Eigen::Isometry3d::Identity();
-      pose_b.linear() = rng.rotation().toRotationMatrix();
+      pose_b.linear() = rng.quaternion().toRotationMatrix();
       pose_b.translation() = pair.pose_a.translation();
       const Vec3 u = rng.unit_vector();
       const Interval range = overlap_interval(world_a, transformed(pair.b, pose_b), u);
