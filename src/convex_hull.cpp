@@ -150,6 +150,8 @@ ConvexHull::ConvexHull(const std::vector<Eigen::Vector3d>& points) {
     data->ys.push_back(data->ys[0]);
     data->zs.push_back(data->zs[0]);
   }
+  data->vertex_count = n;
+  data->padded_count = static_cast<int>(data->xs.size());
   std::vector<std::vector<std::int32_t>> neighbors(n);
   for (const auto& e : hull.edges) {
     const int a = local[e[0]], b = local[e[1]];

@@ -69,6 +69,8 @@ struct HullData {
   /// map (6 faces x kCells x kCells), so that a climb usually ends within a step or two.
   static constexpr int kCells = 6;
   std::vector<std::int32_t> start_table;
+  int vertex_count = 0;  // vertices.size(), kept as an int for the support function
+  int padded_count = 0;  // xs.size()
   int dimension = 0;
   double extent = 0.0;
   /// A ball containing the hull, and a ball inside it (radius 0 unless dimension is 3): quick

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <hullcheck/query_result.hpp>
 
 #include "minkowski.hpp"
@@ -35,7 +36,8 @@ struct EpaWorkspace {
   std::array<int, kEpaMaxFaces> stack;
   std::array<std::array<int, 2>, kEpaMaxFaces> horizon;  // (face, edge) pairs kept
   std::array<int, kEpaMaxVertices> new_face_of_vertex;
-  std::array<int, kEpaMaxVertices> new_face_stamp;  // iteration that set new_face_of_vertex
+  std::array<std::uint64_t, kEpaMaxVertices> new_face_stamp;  // epoch that set the entry
+  std::uint64_t epoch = 0;  // one per expansion, never reset (a thread-local workspace)
 };
 
 struct EpaOutput {
@@ -167,23 +169,16 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
     set_plane(ws, face);
   }
   face_count = 4;
-  // Neighbours of the tetrahedron by matching reversed edges.
+  // Neighbours across each edge of kTetFaces (edge i joins vertex[i] and vertex[i+1]).
+  static constexpr int kTetNeighbor[4][3] = {{1, 3, 2}, {2, 3, 0}, {0, 3, 1}, {1, 2, 0}};
+  static constexpr int kTetNeighborEdge[4][3] = {{2, 2, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 1}};
   for (int f = 0; f < 4; ++f) {
     for (int i = 0; i < 3; ++i) {
-      const int a = ws.faces[f].vertex[i], b = ws.faces[f].vertex[(i + 1) % 3];
-      for (int g = 0; g < 4; ++g) {
-        if (g == f) continue;
-        for (int j = 0; j < 3; ++j) {
-          if (ws.faces[g].vertex[j] == b && ws.faces[g].vertex[(j + 1) % 3] == a) {
-            ws.faces[f].neighbor[i] = g;
-            ws.faces[f].neighbor_edge[i] = j;
-          }
-        }
-      }
+      ws.faces[f].neighbor[i] = kTetNeighbor[f][i];
+      ws.faces[f].neighbor_edge[i] = kTetNeighborEdge[f][i];
     }
   }
 
-  for (int i = 0; i < kEpaMaxVertices; ++i) ws.new_face_stamp[i] = 0;
   int best = -1;
   EpaFace result{};  // copy of the closest face: its slot may be reused by the expansion
   for (int iteration = 1;; ++iteration) {
@@ -220,6 +215,7 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
     bool broken = false;
     while (stack_size > 0 && !broken) {
       const int f = ws.stack[--stack_size];
+      ws.free_faces[free_count++] = f;  // removed: its slot is free once the walk is done
       for (int i = 0; i < 3; ++i) {
         const int g = ws.faces[f].neighbor[i];
         EpaFace& neighbor = ws.faces[g];
@@ -250,14 +246,8 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
       broken = true;
     }
     if (broken) break;
-    // Free the removed face slots.
-    for (int f = 0; f < face_count; ++f) {
-      if (!ws.faces[f].alive && ws.faces[f].vertex[0] >= 0) {
-        ws.faces[f].vertex[0] = -1;
-        ws.free_faces[free_count++] = f;
-      }
-    }
     // One new face per horizon edge (b, a, w) where (a, b) is the edge in the kept face.
+    const std::uint64_t epoch = ++ws.epoch;
     for (int h = 0; h < horizon_count; ++h) {
       const int g = ws.horizon[h][0];
       const int e = ws.horizon[h][1];
@@ -274,13 +264,13 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
       ws.faces[g].neighbor[e] = f;
       ws.faces[g].neighbor_edge[e] = 0;
       set_plane(ws, face);
-      if (ws.new_face_stamp[b] == iteration) broken = true;  // horizon is not a simple loop
-      ws.new_face_of_vertex[b] = f;  // the new face whose edge (w, b) is edge 2
-      ws.new_face_stamp[b] = iteration;
+      if (ws.new_face_stamp[b] == epoch) broken = true;  // horizon is not a simple loop
+      ws.new_face_of_vertex[b] = f;                      // the new face whose edge (w, b) is edge 2
+      ws.new_face_stamp[b] = epoch;
       ws.horizon[h][0] = f;
     }
     for (int h = 0; h < horizon_count && !broken; ++h) {
-      broken = ws.new_face_stamp[ws.faces[ws.horizon[h][0]].vertex[1]] != iteration;
+      broken = ws.new_face_stamp[ws.faces[ws.horizon[h][0]].vertex[1]] != epoch;
     }
     if (broken) {
       out.status = Status::kDegenerate;
@@ -304,7 +294,7 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
     // point to the origin is nearest.
     EpaFace face = result;
     SubSimplex sub = closest_on_face(ws, face);
-    if (out.status == Status::kConverged) {
+    if (out.status == Status::kConverged && sub.size < 3) {  // projection outside the face
       for (int f = 0; f < face_count; ++f) {
         const EpaFace& candidate = ws.faces[f];
         if (!candidate.alive || candidate.degenerate ||

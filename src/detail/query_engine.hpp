@@ -106,12 +106,6 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
       core_a, core_b, rotation_a_t * pose_b.linear(),
       rotation_a_t * (pose_b.translation() - pose_a.translation()));
   const double radius = radius_a + radius_b;
-  const double scale = std::max(core_extent(core_a) + radius_a, core_extent(core_b) + radius_b);
-  // Coordinates of the difference are as large as the offset between the shapes; rounding of
-  // those bounds the reachable accuracy from below.
-  const double rounding =
-      16.0 * std::numeric_limits<double>::epsilon() * (md.translation.norm() + 2.0 * scale);
-  const double tolerance = std::max(options.relative_tolerance * scale, rounding);
 
   Eigen::Vector3d v0 = -md.translation;  // A's origin minus B's: inside the difference
   Simplex warm_simplex;
@@ -165,6 +159,13 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
       return answer;
     }
   }
+  // Tolerance model (QueryOptions): relative to the larger shape.
+  const double scale = std::max(core_extent(core_a) + radius_a, core_extent(core_b) + radius_b);
+  // Coordinates of the difference are as large as the offset between the shapes; rounding of
+  // those bounds the reachable accuracy from below.
+  const double rounding =
+      16.0 * std::numeric_limits<double>::epsilon() * (md.translation.norm() + 2.0 * scale);
+  const double tolerance = std::max(options.relative_tolerance * scale, rounding);
   if (kind == QueryKind::kPenetration) {
     // The cheap boolean GJK proves separation or yields a tetrahedron around the origin.
     boolean_gjk::WithParts tetrahedron[4];

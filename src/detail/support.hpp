@@ -91,10 +91,10 @@ inline int scan_support_index(const HullData& h, const Eigen::Vector3d& d) {
   const double* xs = h.xs.data();
   const double* ys = h.ys.data();
   const double* zs = h.zs.data();
-  const int n = static_cast<int>(h.vertices.size());
+  const int n = h.vertex_count;
   const double dx = d.x(), dy = d.y(), dz = d.z();
 #if defined(__SSE2__)
-  const int padded = static_cast<int>(h.xs.size());
+  const int padded = h.padded_count;
   const __m128d vdx = _mm_set1_pd(dx), vdy = _mm_set1_pd(dy), vdz = _mm_set1_pd(dz);
   __m128d m0 = _mm_set1_pd(-INFINITY), m1 = m0;
   for (int i = 0; i < padded; i += 4) {
@@ -212,7 +212,7 @@ struct HullCore {
   double inner_radius() const { return data->inner_radius; }
   Eigen::Vector3d support(const Eigen::Vector3d& d, int& index) const {
     const HullData& h = *data;
-    if (h.vertices.size() < ConvexHull::kHillClimbingThreshold) {
+    if (h.vertex_count < static_cast<int>(ConvexHull::kHillClimbingThreshold)) {
       index = scan_support_index(h, d);
     } else {
       index = climb_support_index(h, d, h.start_table[cube_map_cell(d)]);
