@@ -196,8 +196,15 @@ ConvexHull::ConvexHull(const std::vector<Eigen::Vector3d>& points) {
   }
   constexpr int kTableSize = 6 * detail::HullData::kCells * detail::HullData::kCells;
   data->start_table.resize(kTableSize);
+  // Each cell's support vertex by climbing from the previous cell's (exact, and cheap for
+  // hulls of many vertices); below the threshold the adjacency is not used, so scan.
+  int previous = 0;
   for (int cell = 0; cell < kTableSize; ++cell) {
-    data->start_table[cell] = detail::scan_support_index(*data, detail::cube_map_direction(cell));
+    const Eigen::Vector3d d = detail::cube_map_direction(cell);
+    previous = n < static_cast<int>(kHillClimbingThreshold)
+                   ? detail::scan_support_index(*data, d)
+                   : detail::climb_support_index(*data, d, previous);
+    data->start_table[cell] = previous;
   }
   data_ = std::move(data);
 }

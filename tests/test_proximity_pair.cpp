@@ -101,3 +101,48 @@ TEST(ProximityPair, WarmStartNeedsFewerIterationsOnSmallMotions) {
 
 }  // namespace
 }  // namespace hullcheck
+
+namespace hullcheck {
+namespace {
+
+// The warm start re-evaluates the last simplex from vertex indices (hulls, boxes, capsules,
+// spheres) or reuses only the direction (cylinders); either way the answers must equal the cold
+// free functions' on every pose, through contact and back.
+TEST(ProximityPair, WarmStartedAnswersEqualColdOnesForEveryShapeKind) {
+  const std::vector<Shape> shapes = {ellipsoid_hull(60),
+                                     ellipsoid_hull(300),
+                                     Box(0.8, 0.5, 0.3),
+                                     Capsule(0.2, 0.6),
+                                     Sphere(0.3),
+                                     Cylinder(0.25, 0.7),
+                                     Shape(Box(0.4, 0.4, 0.4)).inflated(0.05)};
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    for (std::size_t j = 0; j < shapes.size(); ++j) {
+      ProximityPair pair;
+      pair.set_shape_a(shapes[i]);
+      pair.set_shape_b(shapes[j], translation(2.0, 0, 0));
+      for (int step = 0; step < 120; ++step) {
+        const double x = 2.0 - 0.02 * step;  // through contact to deep overlap
+        const Eigen::Isometry3d pose = pose_from_xyz_angles({x, 0.1 * std::sin(0.1 * step), 0.05},
+                                                            {0.01 * step, 0, 0.02 * step});
+        pair.set_pose_b(pose);
+        const Eigen::Isometry3d id = Eigen::Isometry3d::Identity();
+        const double tol = 1e-9 * 2.0;
+        if (step % 3 == 0) {
+          ASSERT_EQ(pair.in_collision(), intersect(shapes[i], id, shapes[j], pose))
+              << i << j << step;
+        }
+        const SignedDistanceResult cold = signed_distance(shapes[i], id, shapes[j], pose);
+        const SignedDistanceResult& warm = pair.signed_distance();
+        // Cylinders are curved: both answers are within tolerance of the truth.
+        const double allowed = (i == 5 || j == 5) ? 1e-7 : tol;
+        ASSERT_NEAR(warm.signed_distance, cold.signed_distance, allowed)
+            << i << " " << j << " " << step;
+        ASSERT_NEAR(pair.distance().distance, std::max(0.0, cold.signed_distance), allowed);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hullcheck
