@@ -113,12 +113,11 @@ GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int ma
     const Eigen::Vector3d next_v = s.closest_point();
     const double next_distance_squared = next_v.squaredNorm();
     if (!(next_distance_squared < best_distance_squared)) {
-      // No progress in double precision: the answer is the best bound there is.
+      // No progress in double precision: the answer is the best bound there is. Keep v, the
+      // distance and the simplex consistent (the new estimate differs by rounding only).
       if (std::sqrt(best_distance_squared) - lower > tolerance) out.status = Status::kDegenerate;
-      // Restore a simplex whose closest point is the kept v: the new sub-simplex is no worse
-      // in exact arithmetic, so use it but keep the smaller distance estimate.
       v = next_v;
-      best_distance_squared = std::min(best_distance_squared, next_distance_squared);
+      best_distance_squared = next_distance_squared;
       break;
     }
     v = next_v;

@@ -14,24 +14,19 @@ struct MinkowskiDifference {
   const CoreA& a;
   const CoreB& b;
   Eigen::Matrix3d rotation;     // B's frame to A's frame
-  Eigen::Matrix3d rotation_t;   // A's frame to B's frame
   Eigen::Vector3d translation;  // B's origin in A's frame
   int index_a = -1;
   int index_b = -1;
 
   MinkowskiDifference(const CoreA& core_a, const CoreB& core_b, const Eigen::Matrix3d& b_to_a,
                       const Eigen::Vector3d& b_origin_in_a)
-      : a(core_a),
-        b(core_b),
-        rotation(b_to_a),
-        rotation_t(b_to_a.transpose()),
-        translation(b_origin_in_a) {}
+      : a(core_a), b(core_b), rotation(b_to_a), translation(b_origin_in_a) {}
 
   /// Support point w = pa - pb of A - B in direction d (A's frame), with its parts.
   void support(const Eigen::Vector3d& d, Eigen::Vector3d& w, Eigen::Vector3d& pa,
                Eigen::Vector3d& pb) {
     pa = a.support(d, index_a);
-    pb.noalias() = rotation * b.support(rotation_t * (-d), index_b);
+    pb.noalias() = rotation * b.support(rotation.transpose() * (-d), index_b);
     pb += translation;
     w = pa - pb;
   }

@@ -107,7 +107,11 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
       rotation_a_t * (pose_b.translation() - pose_a.translation()));
   const double radius = radius_a + radius_b;
 
-  Eigen::Vector3d v0 = -md.translation;  // A's origin minus B's: inside the difference
+  // First search point: A's bounding-ball centre minus B's, a point inside the difference
+  // near its middle (mesh origins can lie far from the mesh).
+  const Eigen::Vector3d centres =
+      core_a.outer_center() - (md.rotation * core_b.outer_center() + md.translation);
+  Eigen::Vector3d v0 = centres;
   Simplex warm_simplex;
   if (warm != nullptr && warm->valid) {
     v0 = warm->direction;
@@ -125,9 +129,8 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   }
   if (kind == QueryKind::kIntersect || kind == QueryKind::kPenetration) {
     // Balls around the cores prove separation.
-    const Eigen::Vector3d outer_b = md.rotation * core_b.outer_center() + md.translation;
     const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
-    if ((outer_b - core_a.outer_center()).squaredNorm() > reach * reach) return Answer{};
+    if (centres.squaredNorm() > reach * reach) return Answer{};
   }
   if (kind == QueryKind::kIntersect || kind == QueryKind::kDistance) {
     // Balls inside the shapes prove overlap; the point dividing their centres in the ratio of
@@ -182,6 +185,8 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
       simplex.size = 4;
       for (int i = 0; i < 4; ++i) {
         simplex.set_vertex(i, {tetrahedron[i].w, tetrahedron[i].a, tetrahedron[i].b});
+        simplex.lambda[i] = i == 0 ? 1.0 : 0.0;
+        simplex.index_a[i] = simplex.index_b[i] = -1;
       }
       Answer answer;
       answer.iterations = boolean_iterations;

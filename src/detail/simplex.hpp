@@ -23,10 +23,11 @@ struct SimplexVertex {
 /// Up to four vertices (structure of arrays, oldest first) with the barycentric weights of the
 /// closest point to the origin.
 struct Simplex {
+  // Entries from `size` on are unset (no initialisation: this sits on every query's path).
   Eigen::Vector3d w[4], a[4], b[4];
-  int index_a[4] = {-1, -1, -1, -1};  // hull vertex behind a[i] (-1: not a hull)
-  int index_b[4] = {-1, -1, -1, -1};
-  double lambda[4] = {1.0, 0.0, 0.0, 0.0};
+  int index_a[4];  // vertex of core A behind a[i] (-1: a curved core)
+  int index_b[4];
+  double lambda[4];
   int size = 0;
 
   Eigen::Vector3d closest_point() const { return combine(w); }
