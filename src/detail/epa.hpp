@@ -32,6 +32,9 @@ struct EpaFace {
 struct EpaWorkspace {
   std::array<SimplexVertex, kEpaMaxVertices> vertices;
   std::array<EpaFace, kEpaMaxFaces> faces;
+  /// Selection key per face slot: its plane offset, +infinity when removed or degenerate; kept
+  /// contiguous so that finding the closest face is a tight scan.
+  std::array<double, kEpaMaxFaces> key;
   std::array<int, kEpaMaxFaces> free_faces;
   std::array<int, kEpaMaxFaces> stack;
   std::array<std::array<int, 2>, kEpaMaxFaces> horizon;  // (face, edge) pairs kept
@@ -167,6 +170,7 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
     for (int i = 0; i < 3; ++i) face.vertex[i] = kTetFaces[f][i];
     face.alive = true;
     set_plane(ws, face);
+    ws.key[f] = face.offset;
   }
   face_count = 4;
   // Neighbours across each edge of kTetFaces (edge i joins vertex[i] and vertex[i+1]).
@@ -186,9 +190,8 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
     best = -1;
     double best_offset = INFINITY;
     for (int f = 0; f < face_count; ++f) {
-      const EpaFace& face = ws.faces[f];
-      if (face.alive && !face.degenerate && face.offset < best_offset) {
-        best_offset = face.offset;
+      if (ws.key[f] < best_offset) {
+        best_offset = ws.key[f];
         best = f;
       }
     }
@@ -211,6 +214,7 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
     int horizon_count = 0;
     int stack_size = 0;
     ws.faces[best].alive = false;
+    ws.key[best] = INFINITY;
     ws.stack[stack_size++] = best;
     bool broken = false;
     while (stack_size > 0 && !broken) {
@@ -225,6 +229,7 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
             neighbor.normal.dot(w.w - ws.vertices[neighbor.vertex[0]].w) > visibility_epsilon;
         if (visible) {
           neighbor.alive = false;
+          ws.key[g] = INFINITY;
           ws.stack[stack_size++] = g;
         } else if (horizon_count < kEpaMaxFaces) {
           ws.horizon[horizon_count++] = {g, ws.faces[f].neighbor_edge[i]};
@@ -264,6 +269,7 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
       ws.faces[g].neighbor[e] = f;
       ws.faces[g].neighbor_edge[e] = 0;
       set_plane(ws, face);
+      ws.key[f] = face.offset;
       if (ws.new_face_stamp[b] == epoch) broken = true;  // horizon is not a simple loop
       ws.new_face_of_vertex[b] = f;                      // the new face whose edge (w, b) is edge 2
       ws.new_face_stamp[b] = epoch;
