@@ -101,16 +101,42 @@ template <class CoreA, class CoreB>
 Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
                  const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
                  QueryKind kind, const QueryOptions& options, WarmStart* warm) {
-  const Eigen::Matrix3d rotation_a_t = pose_a.linear().transpose();
-  MinkowskiDifference<CoreA, CoreB> md(
-      core_a, core_b, rotation_a_t * pose_b.linear(),
-      rotation_a_t * (pose_b.translation() - pose_a.translation()));
   const double radius = radius_a + radius_b;
-
-  // First search point: A's bounding-ball centre minus B's, a point inside the difference
-  // near its middle (mesh origins can lie far from the mesh).
+  const Eigen::Matrix3d rotation_a_t = pose_a.linear().transpose();
+  const Eigen::Vector3d offset_world = pose_b.translation() - pose_a.translation();
+  // Ball tests first, from matrix-vector products only (the relative rotation is built only
+  // when GJK runs). centres: A's bounding-ball centre minus B's, in A's frame.
   const Eigen::Vector3d centres =
-      core_a.outer_center() - (md.rotation * core_b.outer_center() + md.translation);
+      core_a.outer_center() -
+      rotation_a_t * (pose_b.linear() * core_b.outer_center() + offset_world);
+  if (kind == QueryKind::kIntersect || kind == QueryKind::kPenetration) {
+    // Balls around the cores prove separation.
+    const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
+    if (centres.squaredNorm() > reach * reach) return Answer{};
+  }
+  if (kind == QueryKind::kIntersect || kind == QueryKind::kDistance) {
+    // Balls inside the shapes prove overlap; the point dividing their centres in the ratio of
+    // their radii is inside both.
+    const double inner_a = core_a.inner_radius() + radius_a;
+    const double inside = inner_a + core_b.inner_radius() + radius_b;
+    const Eigen::Vector3d offset =
+        rotation_a_t * (pose_b.linear() * core_b.inner_center() + offset_world) -
+        core_a.inner_center();
+    if (offset.squaredNorm() < inside * inside) {
+      Answer answer;
+      answer.overlapping = true;
+      if (kind == QueryKind::kDistance) {
+        answer.has_geometry = true;
+        answer.point_a = answer.point_b =
+            pose_a * (core_a.inner_center() + (inner_a / inside) * offset);
+      }
+      return answer;
+    }
+  }
+  MinkowskiDifference<CoreA, CoreB> md(core_a, core_b, rotation_a_t * pose_b.linear(),
+                                       rotation_a_t * offset_world);
+  // First search point: the ball centres' difference, a point inside the difference near its
+  // middle (mesh origins can lie far from the mesh), or the warm start's last direction.
   Eigen::Vector3d v0 = centres;
   Simplex warm_simplex;
   if (warm != nullptr && warm->valid) {
@@ -125,29 +151,6 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
         warm_simplex.b[i] = md.rotation * core_b.vertex(warm->index_b[i]) + md.translation;
         warm_simplex.w[i] = warm_simplex.a[i] - warm_simplex.b[i];
       }
-    }
-  }
-  if (kind == QueryKind::kIntersect || kind == QueryKind::kPenetration) {
-    // Balls around the cores prove separation.
-    const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
-    if (centres.squaredNorm() > reach * reach) return Answer{};
-  }
-  if (kind == QueryKind::kIntersect || kind == QueryKind::kDistance) {
-    // Balls inside the shapes prove overlap; the point dividing their centres in the ratio of
-    // their radii is inside both.
-    const double inner_a = core_a.inner_radius() + radius_a;
-    const double inside = inner_a + core_b.inner_radius() + radius_b;
-    const Eigen::Vector3d centre_b = md.rotation * core_b.inner_center() + md.translation;
-    const Eigen::Vector3d offset = centre_b - core_a.inner_center();
-    if (offset.squaredNorm() < inside * inside) {
-      Answer answer;
-      answer.overlapping = true;
-      if (kind == QueryKind::kDistance) {
-        answer.has_geometry = true;
-        answer.point_a = answer.point_b =
-            pose_a * (core_a.inner_center() + (inner_a / inside) * offset);
-      }
-      return answer;
     }
   }
   if (kind == QueryKind::kIntersect) {
