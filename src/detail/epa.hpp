@@ -54,26 +54,23 @@ struct EpaOutput {
 
 namespace epa_internal {
 
-/// Plane of a face. A face is degenerate when its area is below 1e-12 of the square of its
-/// longest edge (a sliver whose normal has no significant digits) or zero.
+/// Plane of a face. A face is degenerate when the sine of its angle at vertex 0 is below 1e-12
+/// (a sliver or a zero-area face, whose normal has no significant digits).
 inline void set_plane(EpaWorkspace& ws, EpaFace& f) {
   const Eigen::Vector3d& p0 = ws.vertices[f.vertex[0]].w;
-  const Eigen::Vector3d& p1 = ws.vertices[f.vertex[1]].w;
-  const Eigen::Vector3d& p2 = ws.vertices[f.vertex[2]].w;
-  Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
-  const double length = n.norm();
-  const double longest_edge_squared =
-      std::max({(p1 - p0).squaredNorm(), (p2 - p1).squaredNorm(), (p0 - p2).squaredNorm()});
-  f.degenerate = !(length > 1e-12 * longest_edge_squared);
+  const Eigen::Vector3d e1 = ws.vertices[f.vertex[1]].w - p0;
+  const Eigen::Vector3d e2 = ws.vertices[f.vertex[2]].w - p0;
+  Eigen::Vector3d n = e1.cross(e2);
+  const double length_squared = n.squaredNorm();
+  f.degenerate = !(length_squared > 1e-24 * e1.squaredNorm() * e2.squaredNorm());
   if (f.degenerate) {
     f.normal = Eigen::Vector3d::UnitZ();
     f.offset = INFINITY;
     return;
   }
-  n /= length;
+  n /= std::sqrt(length_squared);
   f.normal = n;
-  // Offset from the vertex nearest to the origin along n (all three agree up to rounding).
-  f.offset = std::max({n.dot(p0), n.dot(p1), n.dot(p2)});
+  f.offset = n.dot(p0);  // the other vertices agree up to rounding
 }
 
 /// Closest point of a face's triangle to the origin (indices 0-2 into face.vertex).
@@ -225,8 +222,7 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
         EpaFace& neighbor = ws.faces[g];
         if (!neighbor.alive) continue;
         const bool visible =
-            neighbor.degenerate ||
-            neighbor.normal.dot(w.w - ws.vertices[neighbor.vertex[0]].w) > visibility_epsilon;
+            neighbor.degenerate || neighbor.normal.dot(w.w) - neighbor.offset > visibility_epsilon;
         if (visible) {
           neighbor.alive = false;
           ws.key[g] = INFINITY;
@@ -238,14 +234,8 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
         }
       }
     }
-    // A horizon edge may have been recorded before its other face was removed later by the
-    // walk; such edges are not on the horizon. Keep only those whose removed side is dead and
-    // kept side alive.
-    int kept = 0;
-    for (int h = 0; h < horizon_count; ++h) {
-      if (ws.faces[ws.horizon[h][0]].alive) ws.horizon[kept++] = ws.horizon[h];
-    }
-    horizon_count = kept;
+    // Visibility depends only on the face and w, so a face recorded on the horizon (not
+    // visible) is never removed later in the walk: every recorded edge is a horizon edge.
     if (horizon_count < 3 || face_count + horizon_count > kEpaMaxFaces) {
       out.status = Status::kDegenerate;
       broken = true;
