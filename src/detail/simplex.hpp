@@ -68,16 +68,12 @@ inline SubSimplex closest_on_segment(const Eigen::Vector3d* p, int i0, int i1) {
   const double along = -s0.dot(t);
   SubSimplex r;
   if (along <= 0.0 || tt <= 0.0) {
+    // Vertex region of s0, or a zero-length segment: the nearer end (s1 only by rounding).
+    const bool second = s1.squaredNorm() < s0.squaredNorm();
     r.size = 1;
-    r.index[0] = i0;
+    r.index[0] = second ? i1 : i0;
     r.lambda[0] = 1.0;
-    r.distance_squared = s0.squaredNorm();
-    if (tt <= 0.0 || s1.squaredNorm() < r.distance_squared) {
-      if (s1.squaredNorm() < r.distance_squared) {
-        r.index[0] = i1;
-        r.distance_squared = s1.squaredNorm();
-      }
-    }
+    r.distance_squared = second ? s1.squaredNorm() : s0.squaredNorm();
     return r;
   }
   if (along >= tt) {
