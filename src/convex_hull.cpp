@@ -169,30 +169,30 @@ ConvexHull::ConvexHull(const std::vector<Eigen::Vector3d>& points) {
   for (const auto& t : hull.triangles) {
     data->triangles.push_back({local[t[0]], local[t[1]], local[t[2]]});
   }
-  // Bounding ball about the box centre; inner ball about the vertex centroid, touching the
-  // nearest facet plane.
-  Eigen::Vector3d lo = data->vertices[0], hi = data->vertices[0], centroid(0, 0, 0);
+  // Balls about the bounding-box centre (tighter than the centroid for meshes): the outer one
+  // reaches the farthest vertex, the inner one touches the nearest facet plane (none if the
+  // centre is not strictly inside).
+  Eigen::Vector3d lo = data->vertices[0], hi = data->vertices[0];
   for (const auto& v : data->vertices) {
     lo = lo.cwiseMin(v);
     hi = hi.cwiseMax(v);
-    centroid += v;
   }
-  centroid /= static_cast<double>(n);
-  data->outer_center = 0.5 * (lo + hi);
+  const Eigen::Vector3d centre = 0.5 * (lo + hi);
+  data->center = centre;
   for (const auto& v : data->vertices) {
-    data->outer_radius = std::max(data->outer_radius, (v - data->outer_center).norm());
+    data->outer_radius = std::max(data->outer_radius, (v - centre).norm());
   }
   data->outer_radius *= 1.0 + 1e-12;  // rounding of the norms above
-  data->inner_center = centroid;
   if (data->dimension == 3) {
     double inner = INFINITY;
     for (const auto& t : data->triangles) {
       const Eigen::Vector3d& p0 = data->vertices[t[0]];
       const Eigen::Vector3d normal =
           (data->vertices[t[1]] - p0).cross(data->vertices[t[2]] - p0).normalized();
-      if (normal.allFinite()) inner = std::min(inner, normal.dot(p0 - centroid));
+      if (normal.allFinite()) inner = std::min(inner, normal.dot(p0 - centre));
     }
-    data->inner_radius = std::isfinite(inner) ? std::max(0.0, inner * (1.0 - 1e-9)) : 0.0;
+    // Valid only with the centre strictly inside (a bounding-box centre need not be).
+    if (std::isfinite(inner) && inner > 0.0) data->inner_radius = inner * (1.0 - 1e-9);
   }
   constexpr int kTableSize = 6 * detail::HullData::kCells * detail::HullData::kCells;
   data->start_table.resize(kTableSize);

@@ -140,3 +140,25 @@ TEST(ConvexHull, BadInputThrowsClearErrors) {
 
 }  // namespace
 }  // namespace hullcheck
+
+namespace hullcheck {
+namespace {
+
+// The bounding-box centre of a corner tetrahedron, (1/2, 1/2, 1/2), lies outside it: a small
+// sphere there is 0.5/sqrt(3) - r away, and no shortcut may call the pair overlapping.
+TEST(ConvexHull, BoxCentreOutsideTheHullIsNotTakenAsInside) {
+  const ConvexHull corner({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+  const Eigen::Isometry3d at_centre = test::translation(0.5, 0.5, 0.5);
+  const double expected = 0.5 / std::sqrt(3.0) - 0.05;
+  EXPECT_FALSE(intersect(corner, Eigen::Isometry3d::Identity(), Sphere(0.05), at_centre));
+  EXPECT_NEAR(distance(corner, Eigen::Isometry3d::Identity(), Sphere(0.05), at_centre).distance,
+              expected, 1e-12);
+  EXPECT_EQ(penetration(corner, Eigen::Isometry3d::Identity(), Sphere(0.05), at_centre).depth, 0.0);
+  // Flat hulls have no inner ball either; (0.6, 0.6, 0) is 0.2/sqrt(2) - 0.05 off the triangle.
+  const ConvexHull flat({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  EXPECT_FALSE(intersect(flat, Eigen::Isometry3d::Identity(), Sphere(0.05),
+                         test::translation(0.6, 0.6, 0.0)));
+}
+
+}  // namespace
+}  // namespace hullcheck

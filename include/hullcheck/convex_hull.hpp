@@ -73,12 +73,12 @@ struct HullData {
   int padded_count = 0;  // xs.size()
   int dimension = 0;
   double extent = 0.0;
-  /// A ball containing the hull, and a ball inside it (radius 0 unless dimension is 3): quick
-  /// proofs of separation and of overlap before GJK.
-  Eigen::Vector3d outer_center{0, 0, 0};
+  /// Balls about the bounding-box centre: one containing the hull, and one inside it when the
+  /// centre is strictly inside (dimension 3), else inner_radius = -1 (no inner ball). Quick
+  /// proofs of separation and of overlap.
+  Eigen::Vector3d center{0, 0, 0};
   double outer_radius = 0.0;
-  Eigen::Vector3d inner_center{0, 0, 0};
-  double inner_radius = 0.0;
+  double inner_radius = -1.0;
 };
 }  // namespace detail
 

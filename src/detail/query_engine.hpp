@@ -104,31 +104,28 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   const double radius = radius_a + radius_b;
   const Eigen::Matrix3d rotation_a_t = pose_a.linear().transpose();
   const Eigen::Vector3d offset_world = pose_b.translation() - pose_a.translation();
-  // Ball tests first, from matrix-vector products only (the relative rotation is built only
-  // when GJK runs). centres: A's bounding-ball centre minus B's, in A's frame.
+  // Ball tests first, from one matrix-vector product pair (the relative rotation is built only
+  // when GJK runs). centres: A's ball centre minus B's, in A's frame.
   const Eigen::Vector3d centres =
-      core_a.outer_center() -
-      rotation_a_t * (pose_b.linear() * core_b.outer_center() + offset_world);
+      core_a.center() - rotation_a_t * (pose_b.linear() * core_b.center() + offset_world);
+  const double centres_squared = centres.squaredNorm();
   if (kind == QueryKind::kIntersect || kind == QueryKind::kPenetration) {
     // Balls around the cores prove separation.
     const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
-    if (centres.squaredNorm() > reach * reach) return Answer{};
+    if (centres_squared > reach * reach) return Answer{};
   }
-  if (kind == QueryKind::kIntersect || kind == QueryKind::kDistance) {
-    // Balls inside the shapes prove overlap; the point dividing their centres in the ratio of
-    // their radii is inside both.
+  if ((kind == QueryKind::kIntersect || kind == QueryKind::kDistance) &&
+      core_a.inner_radius() >= 0.0 && core_b.inner_radius() >= 0.0) {
+    // Balls inside the shapes (each core's centre lies inside it) prove overlap; the point
+    // dividing their centres in the ratio of their radii is inside both.
     const double inner_a = core_a.inner_radius() + radius_a;
     const double inside = inner_a + core_b.inner_radius() + radius_b;
-    const Eigen::Vector3d offset =
-        rotation_a_t * (pose_b.linear() * core_b.inner_center() + offset_world) -
-        core_a.inner_center();
-    if (offset.squaredNorm() < inside * inside) {
+    if (centres_squared < inside * inside) {
       Answer answer;
       answer.overlapping = true;
       if (kind == QueryKind::kDistance) {
         answer.has_geometry = true;
-        answer.point_a = answer.point_b =
-            pose_a * (core_a.inner_center() + (inner_a / inside) * offset);
+        answer.point_a = answer.point_b = pose_a * (core_a.center() - (inner_a / inside) * centres);
       }
       return answer;
     }

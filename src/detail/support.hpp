@@ -13,17 +13,18 @@
 
 namespace hullcheck::detail {
 
-// Each core's support(d, index) returns a maximiser of dot(p, d) and sets `index` to the
-// vertex it is, for cores with finitely many vertices (vertex(index) gives it back; the warm
-// start re-evaluates simplices from them); curved cores leave `index` unchanged.
+// Each core has a centre inside it, with a ball around the core (outer_radius) and one inside
+// it (inner_radius, negative when there is none). Each core's support(d, index) returns a maximiser
+// of dot(p, d) and sets `index` to the vertex it is, for cores with finitely many vertices
+// (vertex(index) gives it back; the warm start re-evaluates simplices from them); curved cores
+// leave `index` unchanged.
 
 /// A single point at the origin (core of a sphere).
 struct PointCore {
   static constexpr bool kIndexed = true;
   Eigen::Vector3d vertex(int /*index*/) const { return Eigen::Vector3d::Zero(); }
-  Eigen::Vector3d outer_center() const { return Eigen::Vector3d::Zero(); }
+  Eigen::Vector3d center() const { return Eigen::Vector3d::Zero(); }
   double outer_radius() const { return 0.0; }
-  Eigen::Vector3d inner_center() const { return Eigen::Vector3d::Zero(); }
   double inner_radius() const { return 0.0; }
   Eigen::Vector3d support(const Eigen::Vector3d& /*d*/, int& index) const {
     index = 0;
@@ -36,9 +37,8 @@ struct SegmentCore {
   static constexpr bool kIndexed = true;
   double half_length;
   Eigen::Vector3d vertex(int index) const { return {0.0, 0.0, index ? half_length : -half_length}; }
-  Eigen::Vector3d outer_center() const { return Eigen::Vector3d::Zero(); }
+  Eigen::Vector3d center() const { return Eigen::Vector3d::Zero(); }
   double outer_radius() const { return half_length; }
-  Eigen::Vector3d inner_center() const { return Eigen::Vector3d::Zero(); }
   double inner_radius() const { return 0.0; }
   Eigen::Vector3d support(const Eigen::Vector3d& d, int& index) const {
     index = d.z() >= 0.0 ? 1 : 0;
@@ -55,9 +55,8 @@ struct BoxCore {
     return {index & 1 ? half.x() : -half.x(), index & 2 ? half.y() : -half.y(),
             index & 4 ? half.z() : -half.z()};
   }
-  Eigen::Vector3d outer_center() const { return Eigen::Vector3d::Zero(); }
+  Eigen::Vector3d center() const { return Eigen::Vector3d::Zero(); }
   double outer_radius() const { return half.norm(); }
-  Eigen::Vector3d inner_center() const { return Eigen::Vector3d::Zero(); }
   double inner_radius() const { return half.minCoeff(); }
   Eigen::Vector3d support(const Eigen::Vector3d& d, int& index) const {
     index = (d.x() >= 0.0 ? 1 : 0) | (d.y() >= 0.0 ? 2 : 0) | (d.z() >= 0.0 ? 4 : 0);
@@ -70,9 +69,8 @@ struct CylinderCore {
   static constexpr bool kIndexed = false;
   double radius;
   double half_length;
-  Eigen::Vector3d outer_center() const { return Eigen::Vector3d::Zero(); }
+  Eigen::Vector3d center() const { return Eigen::Vector3d::Zero(); }
   double outer_radius() const { return std::sqrt(radius * radius + half_length * half_length); }
-  Eigen::Vector3d inner_center() const { return Eigen::Vector3d::Zero(); }
   double inner_radius() const { return std::min(radius, half_length); }
   Eigen::Vector3d support(const Eigen::Vector3d& d, int& /*index*/) const {
     const double z = d.z() >= 0.0 ? half_length : -half_length;
@@ -206,9 +204,8 @@ struct HullCore {
   static constexpr bool kIndexed = true;
   const HullData* data;
   const Eigen::Vector3d& vertex(int index) const { return data->vertices[index]; }
-  const Eigen::Vector3d& outer_center() const { return data->outer_center; }
+  const Eigen::Vector3d& center() const { return data->center; }
   double outer_radius() const { return data->outer_radius; }
-  const Eigen::Vector3d& inner_center() const { return data->inner_center; }
   double inner_radius() const { return data->inner_radius; }
   Eigen::Vector3d support(const Eigen::Vector3d& d, int& index) const {
     const HullData& h = *data;
