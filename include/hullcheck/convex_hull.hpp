@@ -23,7 +23,7 @@ struct HullData;
 /// The support function is exact (it returns a vertex that maximises the dot product). Below
 /// `kHillClimbingThreshold` vertices it scans all vertices; above, it hill-climbs over the vertex
 /// adjacency graph, which on a convex polytope always ends at a global maximum, starting from a
-/// precomputed support vertex of a nearby direction (a cube map of 1536 directions).
+/// precomputed support vertex of a nearby direction (a cube map of 864 directions).
 ///
 /// Copying is cheap: copies share the immutable hull data. Thread-safe for concurrent reads.
 /// Throws InputError for an empty point set or a non-finite coordinate (naming the point index).
@@ -67,7 +67,7 @@ struct HullData {
   std::vector<std::array<int, 3>> triangles;
   /// Hill-climbing starts: the support vertex for the centre direction of each cell of a cube
   /// map (6 faces x kCells x kCells), so that a climb usually ends within a step or two.
-  static constexpr int kCells = 16;
+  static constexpr int kCells = 12;
   std::vector<std::int32_t> start_table;
   int vertex_count = 0;  // vertices.size(), kept as an int for the support function
   int padded_count = 0;  // xs.size()
