@@ -292,11 +292,8 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
     SubSimplex sub = closest_on_face(ws, face);
     if (out.status == Status::kConverged && sub.size < 3) {  // projection outside the face
       for (int f = 0; f < face_count; ++f) {
+        if (!(ws.key[f] <= result.offset + tolerance)) continue;  // removed, degenerate or far
         const EpaFace& candidate = ws.faces[f];
-        if (!candidate.alive || candidate.degenerate ||
-            candidate.offset > result.offset + tolerance) {
-          continue;
-        }
         const SubSimplex c = closest_on_face(ws, candidate);
         if (c.distance_squared < sub.distance_squared) {
           sub = c;

@@ -24,16 +24,6 @@ struct PointOnly {
   }
 };
 
-/// A simplex vertex with the shapes' support points too (when EPA continues from it).
-struct WithParts {
-  Eigen::Vector3d w, a, b;
-  void set(const Eigen::Vector3d& w_in, const Eigen::Vector3d& a_in, const Eigen::Vector3d& b_in) {
-    w = w_in;
-    a = a_in;
-    b = b_in;
-  }
-};
-
 inline Eigen::Vector3d triple(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                               const Eigen::Vector3d& c) {
   return a.cross(b).cross(c);

@@ -27,7 +27,6 @@ struct Answer {
   Status status = Status::kConverged;
   int iterations = 0;
   int epa_iterations = 0;
-  bool has_geometry = false;  ///< points/normal filled (not for kIntersect)
 };
 
 template <class Core>
@@ -86,7 +85,6 @@ void add_penetration(MD& md, Simplex simplex, double radius_a, double radius_b,
   // EPA's normal n is the outward normal of A - B at the nearest boundary point p = a - b;
   // moving B by p separates, so n points from A to B.
   answer.overlapping = true;
-  answer.has_geometry = true;
   answer.epa_iterations = e.iterations;
   answer.iterations += e.iterations;
   if (e.status != Status::kConverged) answer.status = e.status;
@@ -124,7 +122,6 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
       Answer answer;
       answer.overlapping = true;
       if (kind == QueryKind::kDistance) {
-        answer.has_geometry = true;
         answer.point_a = answer.point_b = pose_a * (core_a.center() - (inner_a / inside) * centres);
       }
       return answer;
@@ -171,7 +168,7 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   const double tolerance = std::max(options.relative_tolerance * scale, rounding);
   if (kind == QueryKind::kPenetration) {
     // The cheap boolean GJK proves separation or yields a tetrahedron around the origin.
-    boolean_gjk::WithParts tetrahedron[4];
+    SimplexVertex tetrahedron[4];
     int boolean_iterations = 0;
     const BooleanVerdict verdict =
         gjk_boolean(md, -v0, radius, options.max_gjk_iterations, boolean_iterations, tetrahedron);
@@ -184,7 +181,7 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
       Simplex simplex;
       simplex.size = 4;
       for (int i = 0; i < 4; ++i) {
-        simplex.set_vertex(i, {tetrahedron[i].w, tetrahedron[i].a, tetrahedron[i].b});
+        simplex.set_vertex(i, tetrahedron[i]);
         simplex.lambda[i] = i == 0 ? 1.0 : 0.0;
         simplex.index_a[i] = simplex.index_b[i] = -1;
       }
@@ -206,21 +203,19 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   if (warm != nullptr) {
     if (g.distance > 0.0) warm->direction = g.v;  // else keep the last separating direction
     warm->valid = true;
-    warm->simplex_size = 0;
+    warm->simplex_size = g.simplex.size;
     for (int i = 0; i < g.simplex.size; ++i) {
-      if (g.simplex.index_a[i] < 0 || g.simplex.index_b[i] < 0) break;  // curved core
       warm->index_a[i] = g.simplex.index_a[i];
       warm->index_b[i] = g.simplex.index_b[i];
-      warm->simplex_size = i + 1;
+      // A curved core has no vertex indices: only the direction is kept.
+      if (g.simplex.index_a[i] < 0 || g.simplex.index_b[i] < 0) warm->simplex_size = 0;
     }
-    if (warm->simplex_size < g.simplex.size) warm->simplex_size = 0;
   }
   if (kind == QueryKind::kIntersect) {
     answer.overlapping = g.cores_overlap || g.distance <= radius ||
                          (g.lower_bound <= radius && g.distance - radius <= tolerance);
     return answer;
   }
-  answer.has_geometry = true;
   const Eigen::Matrix3d& rotation_a = pose_a.linear();
   if (kind == QueryKind::kPenetration && !g.cores_overlap && g.lower_bound > radius) {
     return answer;  // proven apart: no penetration (points and normal are not needed)

@@ -16,8 +16,14 @@
 namespace hullcheck::detail {
 
 /// One simplex vertex: w = a - b, with the shapes' support points a and b (A's frame).
+/// Also the vertex type of the boolean GJK when EPA continues from its tetrahedron.
 struct SimplexVertex {
   Eigen::Vector3d w, a, b;
+  void set(const Eigen::Vector3d& w_in, const Eigen::Vector3d& a_in, const Eigen::Vector3d& b_in) {
+    w = w_in;
+    a = a_in;
+    b = b_in;
+  }
 };
 
 /// Up to four vertices (structure of arrays, oldest first) with the barycentric weights of the
