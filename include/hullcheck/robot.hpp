@@ -1,0 +1,12 @@
+// Umbrella header of hullcheck's robot model: URDF loading, forward kinematics, SRDF,
+// allowed-collision matrices and self-collision queries.
+#pragma once
+
+#include <hullcheck/hullcheck.hpp>
+#include <hullcheck/robot/allowed_collision_matrix.hpp>
+#include <hullcheck/robot/collision_matrix_generation.hpp>
+#include <hullcheck/robot/mesh_file.hpp>
+#include <hullcheck/robot/resource_path.hpp>
+#include <hullcheck/robot/robot_model.hpp>
+#include <hullcheck/robot/self_collision.hpp>
+#include <hullcheck/robot/srdf.hpp>

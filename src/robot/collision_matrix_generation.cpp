@@ -1,0 +1,90 @@
+#include <cmath>
+#include <hullcheck/errors.hpp>
+#include <hullcheck/robot/collision_matrix_generation.hpp>
+#include <hullcheck/robot/robot_model.hpp>
+#include <hullcheck/robot/self_collision.hpp>
+#include <memory>
+#include <random>
+
+namespace hullcheck {
+
+GeneratedCollisionMatrix generate_collision_matrix(const RobotModel& model,
+                                                   const CollisionMatrixOptions& options) {
+  if (options.samples < 1) throw InputError("generate_collision_matrix: samples must be >= 1");
+  if (!(options.always_fraction > 0.0 && options.always_fraction <= 1.0)) {
+    throw InputError("generate_collision_matrix: always_fraction must be in (0, 1]");
+  }
+  const int n = static_cast<int>(model.links().size());
+  GeneratedCollisionMatrix out{AllowedCollisionMatrix::from_adjacency(model)};
+  out.samples = options.samples;
+  const auto has_geometry = [&](int l) { return !model.link(l).shapes.empty(); };
+  for (int a = 0; a < n; ++a) {
+    for (int b = a + 1; b < n; ++b) {
+      if (out.matrix.allowed(a, b) && has_geometry(a) && has_geometry(b)) ++out.adjacent;
+    }
+  }
+  // The checker copies nothing but shares the model; give it a non-owning pointer.
+  const std::shared_ptr<const RobotModel> shared(&model, [](const RobotModel*) {});
+  std::vector<Eigen::Isometry3d> poses;
+  std::vector<std::pair<int, int>> colliding;
+
+  {  // Default configuration.
+    SelfCollisionChecker checker(shared, out.matrix);
+    model.compute_link_poses(model.default_configuration(), poses);
+    checker.colliding_link_pairs_at(poses, colliding);
+    for (const auto& [a, b] : colliding) out.matrix.allow(a, b, CollisionAllowance::kDefault);
+    out.default_pose = static_cast<int>(colliding.size());
+  }
+
+  SelfCollisionChecker checker(shared, out.matrix);
+  std::vector<int> counts(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0);
+  std::mt19937_64 rng(options.seed);
+  const Eigen::VectorXd lower = model.lower_limits();
+  const Eigen::VectorXd upper = model.upper_limits();
+  Eigen::VectorXd q(model.variable_count());
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int s = 0; s < options.samples; ++s) {
+    for (int i = 0; i < q.size(); ++i) {
+      const double lo = std::isfinite(lower[i]) ? lower[i] : -M_PI;
+      const double hi = std::isfinite(upper[i]) ? upper[i] : M_PI;
+      q[i] = lo + (hi - lo) * unit(rng);
+    }
+    model.compute_link_poses(q, poses);
+    colliding.clear();
+    checker.colliding_link_pairs_at(poses, colliding);
+    for (const auto& [a, b] : colliding) ++counts[static_cast<std::size_t>(a * n + b)];
+  }
+  for (const auto& [a, b] : checker.checked_link_pairs()) {
+    const int c = counts[static_cast<std::size_t>(a * n + b)];
+    if (c == 0) {
+      out.matrix.allow(a, b, CollisionAllowance::kNever);
+      ++out.never;
+    } else if (c >= options.always_fraction * options.samples) {
+      out.matrix.allow(a, b, CollisionAllowance::kAlways);
+      ++out.always;
+    } else {
+      ++out.checked;
+    }
+  }
+  return out;
+}
+
+Srdf collision_matrix_to_srdf(const RobotModel& model, const AllowedCollisionMatrix& matrix) {
+  if (matrix.link_count() != static_cast<int>(model.links().size())) {
+    throw InputError("collision_matrix_to_srdf: matrix size does not match robot '" + model.name() +
+                     "'");
+  }
+  Srdf srdf;
+  srdf.robot_name = model.name();
+  for (int a = 0; a < matrix.link_count(); ++a) {
+    for (int b = a + 1; b < matrix.link_count(); ++b) {
+      if (model.link(a).shapes.empty() || model.link(b).shapes.empty()) continue;
+      if (!matrix.allowed(a, b)) continue;
+      srdf.disabled_collisions.push_back(
+          {model.link(a).name, model.link(b).name, to_string(matrix.allowance(a, b))});
+    }
+  }
+  return srdf;
+}
+
+}  // namespace hullcheck

@@ -1,0 +1,402 @@
+#include <tinyxml2.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <hullcheck/errors.hpp>
+#include <hullcheck/robot/mesh_file.hpp>
+#include <hullcheck/robot/robot_model.hpp>
+#include <sstream>
+#include <tuple>
+
+#include "urdf_messages.hpp"
+
+namespace hullcheck {
+namespace {
+
+Eigen::Isometry3d to_isometry(const urdf::Pose& pose) {
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  Eigen::Quaterniond q(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z);
+  const double norm = q.norm();
+  if (norm > 0.0) q.coeffs() /= norm;
+  out.linear() = q.toRotationMatrix();
+  out.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  return out;
+}
+
+// Names of the <joint> elements of <robot>, in file order; throws on malformed XML.
+std::vector<std::string> joint_order_in_file(const std::string& xml, const std::string& source) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    throw InputError("URDF '" + source + "': malformed XML: " + doc.ErrorStr());
+  }
+  const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
+  if (robot == nullptr) {
+    throw InputError("URDF '" + source + "': no <robot> root element");
+  }
+  std::vector<std::string> names;
+  for (const tinyxml2::XMLElement* j = robot->FirstChildElement("joint"); j != nullptr;
+       j = j->NextSiblingElement("joint")) {
+    const char* name = j->Attribute("name");
+    names.emplace_back(name == nullptr ? "" : name);
+  }
+  return names;
+}
+
+void check_padding(const std::string& what, double padding) {
+  if (!std::isfinite(padding) || padding < 0.0) {
+    std::ostringstream msg;
+    msg << what << ": padding must be finite and >= 0 (got " << padding << ")";
+    throw InputError(msg.str());
+  }
+}
+
+struct MeshKey {
+  std::string path;
+  double sx, sy, sz;
+  bool operator<(const MeshKey& o) const {
+    return std::tie(path, sx, sy, sz) < std::tie(o.path, o.sx, o.sy, o.sz);
+  }
+};
+
+struct MeshHull {
+  ConvexHull hull;
+  std::size_t vertex_count;
+};
+
+class Loader {
+ public:
+  Loader(const std::string& source, const std::string& base_dir, const RobotLoadOptions& options)
+      : source_(source), base_dir_(base_dir), options_(options) {}
+
+  CollisionShape make_shape(const urdf::Collision& collision, const std::string& link_name) {
+    const std::string where = "URDF '" + source_ + "': link '" + link_name + "'";
+    if (!collision.geometry) throw InputError(where + ": <collision> without <geometry>");
+    CollisionShape out{Sphere(0.0),
+                       Sphere(0.0),
+                       Eigen::Isometry3d::Identity(),
+                       Eigen::Vector3d::Zero(),
+                       0.0,
+                       std::string(),
+                       0};
+    out.origin = to_isometry(collision.origin);
+    const urdf::Geometry& g = *collision.geometry;
+    try {
+      switch (g.type) {
+        case urdf::Geometry::SPHERE: {
+          const auto& s = static_cast<const urdf::Sphere&>(g);
+          out.unpadded = Sphere(s.radius);
+          out.source = "sphere";
+          break;
+        }
+        case urdf::Geometry::BOX: {
+          const auto& b = static_cast<const urdf::Box&>(g);
+          out.unpadded = Box(b.dim.x, b.dim.y, b.dim.z);
+          out.source = "box";
+          break;
+        }
+        case urdf::Geometry::CYLINDER: {
+          const auto& c = static_cast<const urdf::Cylinder&>(g);
+          out.unpadded = Cylinder(c.radius, c.length);
+          out.source = "cylinder";
+          break;
+        }
+        case urdf::Geometry::MESH: {
+          const auto& m = static_cast<const urdf::Mesh&>(g);
+          const std::string path =
+              resolve_resource_path(m.filename, base_dir_, options_.packages, where);
+          const MeshKey key{path, m.scale.x, m.scale.y, m.scale.z};
+          auto it = meshes_.find(key);
+          if (it == meshes_.end()) {
+            const std::vector<Eigen::Vector3d> vertices =
+                read_mesh_vertices(path, Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z));
+            it = meshes_.emplace(key, MeshHull{ConvexHull(vertices), vertices.size()}).first;
+          }
+          out.unpadded = it->second.hull;
+          out.mesh_vertex_count = it->second.vertex_count;
+          out.source = path;
+          break;
+        }
+        default:
+          throw InputError("unknown geometry type");
+      }
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      if (what.rfind("URDF '", 0) == 0) throw;
+      throw InputError(where + ": " + what);
+    }
+    return out;
+  }
+
+ private:
+  std::string source_;
+  std::string base_dir_;
+  const RobotLoadOptions& options_;
+  std::map<MeshKey, MeshHull> meshes_;
+};
+
+}  // namespace
+
+RobotModel RobotModel::from_urdf_file(const std::string& path, const RobotLoadOptions& options) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("URDF '" + path + "': cannot open file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return from_urdf_string(text.str(), dir.empty() ? "." : dir, options, path);
+}
+
+RobotModel RobotModel::from_urdf_string(const std::string& xml, const std::string& base_dir,
+                                        const RobotLoadOptions& options,
+                                        const std::string& source_name) {
+  const std::string where = "URDF '" + source_name + "'";
+  const std::vector<std::string> file_order = joint_order_in_file(xml, source_name);
+  check_padding(where + ": default", options.default_padding);
+
+  urdf::ModelInterfaceSharedPtr urdf;
+  std::string parse_messages = detail::capture_urdf_messages([&] {
+    try {
+      urdf = urdf::parseURDF(xml);
+    } catch (const std::exception& e) {
+      urdf.reset();
+      throw InputError(where + ": not a valid URDF: " + e.what());
+    }
+  });
+  if (!urdf || !urdf->getRoot()) {
+    throw InputError(where + ": not a valid URDF: " +
+                     (parse_messages.empty() ? "urdfdom gave no reason" : parse_messages));
+  }
+
+  RobotModel model;
+  model.name_ = urdf->getName();
+  model.source_ = source_name;
+  model.default_padding_ = options.default_padding;
+
+  std::map<std::string, std::size_t> file_rank;
+  for (std::size_t i = 0; i < file_order.size(); ++i) file_rank.emplace(file_order[i], i);
+
+  // Depth-first traversal from the root; children in file order.
+  Loader loader(source_name, base_dir, options);
+  std::vector<std::pair<urdf::LinkConstSharedPtr, int>> stack{{urdf->getRoot(), -1}};
+  std::map<std::string, std::pair<std::string, urdf::JointMimicSharedPtr>> mimics;
+  while (!stack.empty()) {
+    const urdf::LinkConstSharedPtr ulink = stack.back().first;
+    const int parent_joint = stack.back().second;
+    stack.pop_back();
+    Link link;
+    link.name = ulink->name;
+    link.parent_joint = parent_joint;
+    for (const urdf::CollisionSharedPtr& c : ulink->collision_array) {
+      if (c) link.shapes.push_back(loader.make_shape(*c, ulink->name));
+    }
+    const int link_id = static_cast<int>(model.links_.size());
+    if (parent_joint >= 0)
+      model.joints_[static_cast<std::size_t>(parent_joint)].child_link = link_id;
+    model.link_by_name_[link.name] = link_id;
+    model.links_.push_back(std::move(link));
+
+    std::vector<urdf::JointSharedPtr> children = ulink->child_joints;
+    std::sort(children.begin(), children.end(), [&](const auto& a, const auto& b) {
+      return file_rank[a->name] < file_rank[b->name];
+    });
+    // Push in reverse so that the first child in the file is visited first.
+    for (auto it = children.rbegin(); it != children.rend(); ++it) {
+      const urdf::Joint& uj = **it;
+      const std::string jwhere = where + ": joint '" + uj.name + "'";
+      Joint joint;
+      joint.name = uj.name;
+      joint.parent_link = link_id;
+      joint.origin = to_isometry(uj.parent_to_joint_origin_transform);
+      switch (uj.type) {
+        case urdf::Joint::REVOLUTE:
+          joint.type = JointType::kRevolute;
+          break;
+        case urdf::Joint::CONTINUOUS:
+          joint.type = JointType::kContinuous;
+          break;
+        case urdf::Joint::PRISMATIC:
+          joint.type = JointType::kPrismatic;
+          break;
+        case urdf::Joint::FIXED:
+          joint.type = JointType::kFixed;
+          break;
+        case urdf::Joint::FLOATING:
+          throw InputError(jwhere +
+                           ": floating joints are not supported (model the free "
+                           "body as a separate robot or environment object)");
+        case urdf::Joint::PLANAR:
+          throw InputError(jwhere + ": planar joints are not supported");
+        default:
+          throw InputError(jwhere + ": unknown joint type");
+      }
+      if (joint.type != JointType::kFixed) {
+        const Eigen::Vector3d axis(uj.axis.x, uj.axis.y, uj.axis.z);
+        if (!axis.allFinite() || axis.norm() < 1e-12) {
+          throw InputError(jwhere + ": <axis> must be a finite non-zero vector");
+        }
+        joint.axis = axis.normalized();
+      }
+      if (joint.type == JointType::kRevolute || joint.type == JointType::kPrismatic) {
+        if (!uj.limits)
+          throw InputError(jwhere + ": needs <limit lower upper> (revolute/prismatic)");
+        joint.lower = uj.limits->lower;
+        joint.upper = uj.limits->upper;
+        if (!std::isfinite(joint.lower) || !std::isfinite(joint.upper) ||
+            joint.lower > joint.upper) {
+          throw InputError(jwhere + ": <limit> lower must be <= upper, both finite");
+        }
+      }
+      if (uj.limits && uj.limits->velocity > 0.0) joint.max_velocity = uj.limits->velocity;
+      if (uj.mimic && joint.type != JointType::kFixed) {
+        mimics[joint.name] = {uj.mimic->joint_name, uj.mimic};
+      }
+      const int joint_id = static_cast<int>(model.joints_.size());
+      model.joint_by_name_[joint.name] = joint_id;
+      model.joints_.push_back(std::move(joint));
+      model.links_[static_cast<std::size_t>(link_id)].child_joints.push_back(joint_id);
+      const urdf::LinkConstSharedPtr child = urdf->getLink(uj.child_link_name);
+      if (!child) throw InputError(jwhere + ": child link '" + uj.child_link_name + "' not found");
+      stack.emplace_back(child, joint_id);
+    }
+  }
+  // Child joint lists were filled in reverse push order; restore file order.
+  for (Link& link : model.links_) {
+    std::sort(link.child_joints.begin(), link.child_joints.end(), [&](int a, int b) {
+      return file_rank[model.joints_[static_cast<std::size_t>(a)].name] <
+             file_rank[model.joints_[static_cast<std::size_t>(b)].name];
+    });
+  }
+
+  // Active joints in depth-first order of their child links (links_ is in that order).
+  for (std::size_t l = 1; l < model.links_.size(); ++l) {
+    const int j = model.links_[l].parent_joint;
+    Joint& joint = model.joints_[static_cast<std::size_t>(j)];
+    if (joint.type == JointType::kFixed || mimics.count(joint.name) != 0) continue;
+    joint.variable = static_cast<int>(model.variable_joints_.size());
+    model.variable_joints_.push_back(j);
+  }
+  // Mimic joints: resolve chains to an active joint.
+  for (const auto& [name, leader] : mimics) {
+    Joint& joint = model.joints_[static_cast<std::size_t>(model.joint_by_name_.at(name))];
+    double multiplier = 1.0;
+    double offset = 0.0;
+    std::string current = name;
+    for (std::size_t hops = 0;; ++hops) {
+      const auto m = mimics.find(current);
+      if (m == mimics.end()) break;
+      if (hops > mimics.size()) {
+        throw InputError(where + ": joint '" + name + "': <mimic> chain forms a cycle");
+      }
+      const std::string& target = m->second.first;
+      const auto t = model.joint_by_name_.find(target);
+      if (t == model.joint_by_name_.end()) {
+        throw InputError(where + ": joint '" + current + "': <mimic joint='" + target +
+                         "'> names no joint");
+      }
+      if (model.joints_[static_cast<std::size_t>(t->second)].type == JointType::kFixed) {
+        throw InputError(where + ": joint '" + current + "': mimics fixed joint '" + target + "'");
+      }
+      // value(current) = mul * value(target) + off; compose with what we have so far.
+      offset += multiplier * m->second.second->offset;
+      multiplier *= m->second.second->multiplier;
+      current = target;
+    }
+    const Joint& leader_joint =
+        model.joints_[static_cast<std::size_t>(model.joint_by_name_.at(current))];
+    joint.mimic_variable = leader_joint.variable;
+    joint.mimic_multiplier = multiplier;
+    joint.mimic_offset = offset;
+    (void)leader;
+  }
+
+  for (const auto& [link_name, padding] : options.link_padding) {
+    if (model.link_by_name_.count(link_name) == 0) {
+      throw InputError(where + ": padding given for unknown link '" + link_name + "'");
+    }
+    check_padding(where + ": link '" + link_name + "'", padding);
+    model.link_padding_[link_name] = padding;
+  }
+  model.apply_padding();
+  model.build_kinematics();
+  return model;
+}
+
+int RobotModel::link_index(const std::string& name) const {
+  const auto it = link_by_name_.find(name);
+  return it == link_by_name_.end() ? -1 : it->second;
+}
+
+int RobotModel::joint_index(const std::string& name) const {
+  const auto it = joint_by_name_.find(name);
+  return it == joint_by_name_.end() ? -1 : it->second;
+}
+
+std::vector<std::string> RobotModel::variable_names() const {
+  std::vector<std::string> names;
+  names.reserve(variable_joints_.size());
+  for (int j : variable_joints_) names.push_back(joints_[static_cast<std::size_t>(j)].name);
+  return names;
+}
+
+int RobotModel::variable_index(const std::string& name) const {
+  const int j = joint_index(name);
+  return j < 0 ? -1 : joints_[static_cast<std::size_t>(j)].variable;
+}
+
+Eigen::VectorXd RobotModel::lower_limits() const {
+  Eigen::VectorXd out(variable_count());
+  for (int i = 0; i < variable_count(); ++i) out[i] = joint(variable_joint(i)).lower;
+  return out;
+}
+
+Eigen::VectorXd RobotModel::upper_limits() const {
+  Eigen::VectorXd out(variable_count());
+  for (int i = 0; i < variable_count(); ++i) out[i] = joint(variable_joint(i)).upper;
+  return out;
+}
+
+Eigen::VectorXd RobotModel::default_configuration() const {
+  Eigen::VectorXd out(variable_count());
+  for (int i = 0; i < variable_count(); ++i) {
+    const Joint& j = joint(variable_joint(i));
+    out[i] = std::min(std::max(0.0, j.lower), j.upper);
+  }
+  return out;
+}
+
+void RobotModel::set_link_padding(const std::string& link, double padding) {
+  if (link_index(link) < 0) {
+    throw InputError("robot '" + name_ + "': set_link_padding: unknown link '" + link + "'");
+  }
+  check_padding("robot '" + name_ + "': link '" + link + "'", padding);
+  link_padding_[link] = padding;
+  apply_padding();
+}
+
+void RobotModel::set_default_padding(double padding) {
+  check_padding("robot '" + name_ + "': default", padding);
+  default_padding_ = padding;
+  apply_padding();
+}
+
+void RobotModel::apply_padding() {
+  for (Link& link : links_) {
+    const auto it = link_padding_.find(link.name);
+    link.padding = it == link_padding_.end() ? default_padding_ : it->second;
+    for (CollisionShape& s : link.shapes) {
+      s.shape = link.padding > 0.0 ? s.unpadded.inflated(link.padding) : s.unpadded;
+      if (s.unpadded.kind() == ShapeKind::kConvexHull) {
+        const auto& data = std::get<ConvexHull>(s.unpadded.geometry()).data();
+        s.bounding_center = data.center;
+        s.bounding_radius = data.outer_radius + s.shape.margin();
+      } else {
+        s.bounding_center.setZero();
+        s.bounding_radius = s.shape.bounding_radius();
+      }
+    }
+  }
+}
+
+}  // namespace hullcheck
