@@ -75,6 +75,22 @@ class Reader {
   std::string source_;
 };
 
+// The shortest decimal text (up to 17 significant digits) that reads back as `value`.
+std::string shortest_text(double value) {
+  std::string text;
+  for (int digits = 1; digits <= std::numeric_limits<double>::max_digits10; ++digits) {
+    std::ostringstream out;
+    out.imbue(std::locale::classic());
+    out << std::setprecision(digits) << value;
+    text = out.str();
+    std::istringstream in(text);
+    in.imbue(std::locale::classic());
+    double back = 0.0;
+    if (in >> back && back == value) break;
+  }
+  return text;
+}
+
 }  // namespace
 
 const SrdfGroup* Srdf::group(const std::string& name) const {
@@ -113,7 +129,10 @@ Srdf parse_srdf(const std::string& xml, const std::string& source_name) {
   for (const XMLElement* e = robot->FirstChildElement(); e != nullptr;
        e = e->NextSiblingElement()) {
     const std::string tag = e->Name();
-    if (tag == "group") {
+    if (tag == "virtual_joint") {
+      srdf.virtual_joints.push_back({r.required(*e, "name"), r.required(*e, "type"),
+                                     r.required(*e, "parent_frame"), r.required(*e, "child_link")});
+    } else if (tag == "group") {
       srdf.groups.push_back(r.group(*e));
     } else if (tag == "group_state") {
       SrdfGroupState state;
@@ -139,12 +158,20 @@ Srdf parse_srdf(const std::string& xml, const std::string& source_name) {
   return srdf;
 }
 
-std::string write_srdf(const Srdf& srdf) {
+std::string write_srdf(const Srdf& srdf, const std::string& comment) {
   tinyxml2::XMLDocument doc;
   doc.InsertEndChild(doc.NewDeclaration());
+  if (!comment.empty()) doc.InsertEndChild(doc.NewComment((" " + comment + " ").c_str()));
   XMLElement* robot = doc.NewElement("robot");
   robot->SetAttribute("name", srdf.robot_name.c_str());
   doc.InsertEndChild(robot);
+  for (const SrdfVirtualJoint& v : srdf.virtual_joints) {
+    XMLElement* e = robot->InsertNewChildElement("virtual_joint");
+    e->SetAttribute("name", v.name.c_str());
+    e->SetAttribute("type", v.type.c_str());
+    e->SetAttribute("parent_frame", v.parent_frame.c_str());
+    e->SetAttribute("child_link", v.child_link.c_str());
+  }
   for (const SrdfGroup& g : srdf.groups) {
     XMLElement* e = robot->InsertNewChildElement("group");
     e->SetAttribute("name", g.name.c_str());
@@ -170,10 +197,7 @@ std::string write_srdf(const Srdf& srdf) {
     for (const auto& [joint, value] : s.joint_values) {
       XMLElement* j = e->InsertNewChildElement("joint");
       j->SetAttribute("name", joint.c_str());
-      std::ostringstream v;
-      v.imbue(std::locale::classic());
-      v << std::setprecision(std::numeric_limits<double>::max_digits10) << value;
-      j->SetAttribute("value", v.str().c_str());
+      j->SetAttribute("value", shortest_text(value).c_str());
     }
   }
   for (const SrdfEndEffector& ee : srdf.end_effectors) {

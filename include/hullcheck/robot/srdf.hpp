@@ -39,10 +39,19 @@ struct SrdfEndEffector {
   std::string parent_group;
 };
 
-/// The contents of an SRDF file. Elements hullcheck does not use (virtual joints, passive
-/// joints, sphere approximations) are skipped.
+/// A virtual joint: how the robot's root link attaches to a frame outside it (MoveIt).
+struct SrdfVirtualJoint {
+  std::string name;
+  std::string type;  // "fixed", "floating", "planar"
+  std::string parent_frame;
+  std::string child_link;
+};
+
+/// The contents of an SRDF file. Elements hullcheck does not use (passive joints, sphere
+/// approximations) are skipped.
 struct Srdf {
   std::string robot_name;
+  std::vector<SrdfVirtualJoint> virtual_joints;
   std::vector<SrdfGroup> groups;
   std::vector<SrdfGroupState> group_states;
   std::vector<SrdfEndEffector> end_effectors;
@@ -64,7 +73,9 @@ struct Srdf {
 Srdf read_srdf_file(const std::string& path);
 Srdf parse_srdf(const std::string& xml, const std::string& source_name = "<srdf string>");
 
-/// SRDF text for `srdf` (every element this struct holds), readable by MoveIt.
-std::string write_srdf(const Srdf& srdf);
+/// SRDF text for `srdf` (every element this struct holds), readable by MoveIt. Joint values
+/// are written with the fewest digits that read back exactly. `comment`, when not empty, is
+/// placed as an XML comment right after the XML declaration.
+std::string write_srdf(const Srdf& srdf, const std::string& comment = "");
 
 }  // namespace hullcheck

@@ -1,0 +1,23 @@
+// hullcheck: command-line front end of the library (robot inspection, collision matrices).
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "inspect_command.hpp"
+#include "srdf_command.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"hullcheck: exact collision and distance queries for robots"};
+  app.require_subcommand(1);
+  hullcheck::cli::add_inspect_command(app);
+  hullcheck::cli::add_srdf_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "hullcheck: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

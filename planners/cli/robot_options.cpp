@@ -1,0 +1,54 @@
+#include "robot_options.hpp"
+
+#include <locale>
+#include <sstream>
+
+namespace hullcheck::cli {
+
+void RobotOptions::add_to(CLI::App& command, bool with_srdf) {
+  command.add_option("--robot", urdf, "URDF file of the robot")->required();
+  command.add_option("--package", packages,
+                     "Folder of a ROS package for package:// URIs, as NAME=DIR (repeatable)");
+  command.add_option("--padding", padding, "Padding added to every link, m (default 0)");
+  if (with_srdf) {
+    command.add_option("--srdf", srdf, "MoveIt SRDF: collision matrix, groups, named states");
+  }
+}
+
+std::shared_ptr<RobotModel> RobotOptions::load() const {
+  RobotLoadOptions options;
+  for (const std::string& p : packages) {
+    const std::size_t eq = p.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == p.size()) {
+      throw InputError("--package '" + p + "': expected NAME=DIR");
+    }
+    options.packages[p.substr(0, eq)] = p.substr(eq + 1);
+  }
+  options.default_padding = padding;
+  return std::make_shared<RobotModel>(RobotModel::from_urdf_file(urdf, options));
+}
+
+Srdf RobotOptions::load_srdf() const { return srdf.empty() ? Srdf{} : read_srdf_file(srdf); }
+
+Eigen::VectorXd parse_configuration(const std::string& text, const RobotModel& model) {
+  std::vector<double> values;
+  std::stringstream items(text);
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    std::istringstream in(item);
+    in.imbue(std::locale::classic());
+    double v = 0.0;
+    std::string rest;
+    if (!(in >> v) || (in >> rest)) {
+      throw InputError("--state: item " + std::to_string(values.size()) + " ('" + item +
+                       "') is not a number");
+    }
+    values.push_back(v);
+  }
+  const Eigen::VectorXd q =
+      Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+  model.check_configuration(q);
+  return q;
+}
+
+}  // namespace hullcheck::cli

@@ -1,0 +1,31 @@
+// Options shared by the subcommands that load a robot: --robot, --package, --srdf, --padding.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <hullcheck/robot.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace hullcheck::cli {
+
+/// What the user said about the robot to load.
+struct RobotOptions {
+  std::string urdf;
+  std::vector<std::string> packages;  // NAME=DIR
+  std::string srdf;
+  double padding = 0.0;
+
+  /// Adds --robot (required), --package (repeatable), --padding; --srdf when `with_srdf`.
+  void add_to(CLI::App& command, bool with_srdf);
+  /// Loads the URDF; throws InputError for a malformed --package or a bad robot.
+  std::shared_ptr<RobotModel> load() const;
+  /// The SRDF given with --srdf (parsed), or an empty Srdf when none was given.
+  Srdf load_srdf() const;
+};
+
+/// Parses "v1,v2,..." into a configuration for `model` (checked: count and finiteness); names
+/// the bad item when one is not a number.
+Eigen::VectorXd parse_configuration(const std::string& text, const RobotModel& model);
+
+}  // namespace hullcheck::cli
