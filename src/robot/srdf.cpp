@@ -36,11 +36,22 @@ class Reader {
 
   double number(const XMLElement& e, const char* attribute) const {
     const std::string text = required(e, attribute);
-    // Multi-DOF joints list several values; hullcheck's joints have one.
+    // Multi-DOF joints list several values; hullcheck's joints have one (the first). Every
+    // value must be a whole finite number: "0.5rad" or "1,5" is an error, not 0.5 or 1.
     std::istringstream in(text);
-    double value = 0.0;
     in.imbue(std::locale::classic());
-    if (!(in >> value) || !std::isfinite(value)) {
+    double value = 0.0;
+    bool ok = false;
+    std::string token;
+    for (int i = 0; in >> token; ++i) {
+      std::istringstream t(token);
+      t.imbue(std::locale::classic());
+      double v = 0.0;
+      ok = (t >> v) && t.peek() == std::char_traits<char>::eof() && std::isfinite(v);
+      if (!ok) break;
+      if (i == 0) value = v;
+    }
+    if (!ok) {
       std::ostringstream msg;
       msg << "SRDF '" << source_ << "': line " << e.GetLineNum() << ": <" << e.Name() << " "
           << attribute << "='" << text << "'> is not a finite number";
