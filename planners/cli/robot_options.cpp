@@ -1,6 +1,6 @@
 #include "robot_options.hpp"
 
-#include <locale>
+#include <cstdlib>
 #include <sstream>
 
 namespace hullcheck::cli {
@@ -35,11 +35,11 @@ Eigen::VectorXd parse_configuration(const std::string& text, const RobotModel& m
   std::stringstream items(text);
   std::string item;
   while (std::getline(items, item, ',')) {
-    std::istringstream in(item);
-    in.imbue(std::locale::classic());
-    double v = 0.0;
-    std::string rest;
-    if (!(in >> v) || (in >> rest)) {
+    // strtod also reads "nan" and "inf", which check_configuration then rejects by joint name.
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    while (end != nullptr && (*end == ' ' || *end == '\t')) ++end;
+    if (item.empty() || end == item.c_str() || *end != '\0') {
       throw InputError("--state: item " + std::to_string(values.size()) + " ('" + item +
                        "') is not a number");
     }

@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# End-to-end checks of the `hullcheck` command-line program: outputs, exit codes, errors.
+# Usage: test_cli.sh PATH_TO_HULLCHECK REPOSITORY_ROOT   (run by ctest as `cli`)
+set -uo pipefail
+bin="$1"
+root="$2"
+arm="$root/robots/hullcheck_arm"
+urdf="$arm/urdf/hullcheck_arm.urdf"
+srdf="$arm/srdf/hullcheck_arm.srdf"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+
+# expect NAME EXPECTED_EXIT PATTERN_STDOUT PATTERN_STDERR -- COMMAND...
+expect() {
+  local name="$1" want_exit="$2" out_pattern="$3" err_pattern="$4"
+  shift 5
+  "$@" >"$tmp/out" 2>"$tmp/err"
+  local got=$?
+  local ok=1
+  if { [ "$want_exit" = 0 ] && [ "$got" != 0 ]; } || { [ "$want_exit" != 0 ] && [ "$got" = 0 ]; }; then
+    ok=0
+  fi
+  [ -n "$out_pattern" ] && ! grep -Eq -- "$out_pattern" "$tmp/out" && ok=0
+  [ -n "$err_pattern" ] && ! grep -Eq -- "$err_pattern" "$tmp/err" && ok=0
+  if [ "$ok" = 1 ]; then
+    echo "ok   $name"
+  else
+    echo "FAIL $name (exit $got)"
+    sed 's/^/  stdout: /' "$tmp/out" | head -20
+    sed 's/^/  stderr: /' "$tmp/err" | head -20
+    failures=$((failures + 1))
+  fi
+}
+
+expect "inspect lists joints and shapes" 0 "8 configuration values" "" -- \
+  "$bin" inspect --robot "$urdf"
+expect "inspect shows the continuous joint" 0 "joint7 +continuous" "" -- \
+  "$bin" inspect --robot "$urdf"
+expect "inspect shows the mimic joint" 0 "finger_joint2 +prismatic +mimics finger_joint1" "" -- \
+  "$bin" inspect --robot "$urdf"
+expect "inspect shows mesh hulls" 0 "hull [0-9]+ vertices \(mesh [0-9]+, link5_mm.stl\)" "" -- \
+  "$bin" inspect --robot "$urdf"
+expect "inspect shows links without geometry" 0 "no collision geometry" "" -- \
+  "$bin" inspect --robot "$urdf"
+expect "inspect --state: free pose" 0 "self-collision .*: free" "" -- \
+  "$bin" inspect --robot "$urdf" --srdf "$srdf" --state 0,0.3,0,-1.6,0,1.2416,0,0.02
+expect "inspect --state: link poses" 0 "tcp +xyz +0.48726 +-?0.00000 +0.35505" "" -- \
+  "$bin" inspect --robot "$urdf" --srdf "$srdf" --state 0,0.3,0,-1.6,0,1.2416,0,0.02
+expect "inspect --state: colliding pose" 0 "IN COLLISION" "" -- \
+  "$bin" inspect --robot "$urdf" --srdf "$srdf" --state 0,2.0,0,2.0,0,2.0,0,0
+expect "inspect --state: colliding pair named" 0 "link1 - link3" "" -- \
+  "$bin" inspect --robot "$urdf" --srdf "$srdf" --state 0,2.0,0,2.0,0,2.0,0,0
+expect "inspect --padding" 0 "padding 0.01" "" -- \
+  "$bin" inspect --robot "$urdf" --padding 0.01
+expect "explicit --package" 0 "8 configuration values" "" -- \
+  "$bin" inspect --robot "$urdf" --package "hullcheck_arm=$arm"
+
+expect "wrong state length" 1 "" "configuration has 2 values, expected 8" -- \
+  "$bin" inspect --robot "$urdf" --state 1,2
+expect "non-numeric state" 1 "" "item 1 \('x'\) is not a number" -- \
+  "$bin" inspect --robot "$urdf" --state 0,x,0,0,0,0,0,0
+expect "NaN state" 1 "" "joint 'joint3'" -- \
+  "$bin" inspect --robot "$urdf" --state 0,0,nan,0,0,0,0,0
+expect "missing URDF" 1 "" "cannot open file" -- \
+  "$bin" inspect --robot "$tmp/none.urdf"
+expect "malformed --package" 1 "" "expected NAME=DIR" -- \
+  "$bin" inspect --robot "$urdf" --package nonsense
+expect "missing SRDF" 1 "" "SRDF .*cannot open" -- \
+  "$bin" inspect --robot "$urdf" --srdf "$tmp/none.srdf" --state 0,0,0,0,0,0,0,0
+printf '<robot name="x"><link name="a"></robot>' >"$tmp/bad.urdf"
+expect "malformed URDF" 1 "" "malformed XML" -- "$bin" inspect --robot "$tmp/bad.urdf"
+expect "no subcommand" 1 "" "" -- "$bin"
+
+expect "srdf writes a collision matrix" 0 'disable_collisions link1="base_link" link2="link1" reason="Adjacent"' \
+  "adjacent" -- "$bin" srdf --robot "$urdf" --samples 300
+expect "srdf finds Never pairs" 0 'reason="Never"' "" -- "$bin" srdf --robot "$urdf" --samples 300
+expect "srdf keeps groups of --srdf" 0 '<group_state name="ready" group="arm">' "" -- \
+  "$bin" srdf --robot "$urdf" --srdf "$srdf" --samples 300
+expect "srdf rejects zero samples" 1 "" "samples must be >= 1" -- \
+  "$bin" srdf --robot "$urdf" --samples 0
+
+if [ "$failures" != 0 ]; then
+  echo "$failures CLI check(s) failed"
+  exit 1
+fi
+echo "all CLI checks passed"
