@@ -63,47 +63,48 @@ int AllowedCollisionMatrix::allowed_pair_count() const {
 
 AllowedCollisionMatrix AllowedCollisionMatrix::from_adjacency(const RobotModel& model) {
   const int n = static_cast<int>(model.links().size());
-  AllowedCollisionMatrix acm(n);
-  // The link's parent link, or -1 for the root.
-  const auto parent_of = [&](int l) {
-    const int j = model.link(l).parent_joint;
-    return j < 0 ? -1 : model.joint(j).parent_link;
+  const auto cell = [n](int a, int b) {
+    return static_cast<std::size_t>(a) * static_cast<std::size_t>(n) + static_cast<std::size_t>(b);
   };
-  // Rigid bodies: root of each fixed-joint cluster.
-  std::vector<int> body(static_cast<std::size_t>(n));
-  for (int l = 0; l < n; ++l) {  // links are ordered parents first
-    const int j = model.link(l).parent_joint;
-    body[static_cast<std::size_t>(l)] = (j >= 0 && model.joint(j).type == JointType::kFixed)
-                                            ? body[static_cast<std::size_t>(parent_of(l))]
-                                            : l;
+  // MoveIt's connection graph: the two links of every joint are joined ...
+  std::vector<char> joined(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0);
+  for (const Joint& j : model.joints()) {
+    joined[cell(j.parent_link, j.child_link)] = joined[cell(j.child_link, j.parent_link)] = 1;
   }
-  std::vector<bool> body_has_geometry(static_cast<std::size_t>(n), false);
-  for (int l = 0; l < n; ++l) {
-    if (!model.link(l).shapes.empty()) body_has_geometry[static_cast<std::size_t>(body[l])] = true;
-  }
-  // Links of one body are adjacent.
-  for (int a = 0; a < n; ++a) {
-    for (int b = a + 1; b < n; ++b) {
-      if (body[static_cast<std::size_t>(a)] == body[static_cast<std::size_t>(b)]) {
-        acm.allow(a, b, CollisionAllowance::kAdjacent);
+  // ... and so are all neighbours of a link without geometry, repeated until nothing changes
+  // (a chain of such links joins its two ends; siblings under a bare link are joined too).
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (int l = 0; l < n; ++l) {
+      if (!model.link(l).shapes.empty()) continue;
+      for (int a = 0; a < n; ++a) {
+        if (a == l || !joined[cell(l, a)]) continue;
+        for (int b = a + 1; b < n; ++b) {
+          if (b == l || !joined[cell(l, b)] || joined[cell(a, b)]) continue;
+          joined[cell(a, b)] = joined[cell(b, a)] = 1;
+          changed = true;
+        }
       }
     }
   }
-  // Each body is adjacent to its parent body, and through parent bodies without geometry to
-  // the next body up that has some.
-  std::vector<std::vector<int>> members(static_cast<std::size_t>(n));
-  for (int l = 0; l < n; ++l) members[static_cast<std::size_t>(body[l])].push_back(l);
-  for (int b = 0; b < n; ++b) {
-    if (body[static_cast<std::size_t>(b)] != b || parent_of(b) < 0) continue;
-    int up = body[static_cast<std::size_t>(parent_of(b))];
-    while (true) {
-      for (int x : members[static_cast<std::size_t>(b)]) {
-        for (int y : members[static_cast<std::size_t>(up)]) {
-          acm.allow(x, y, CollisionAllowance::kAdjacent);
-        }
+  // Links of one rigid body (joined by fixed joints) are adjacent too. Not body to body: a
+  // tool fixed to link7 is two joints from link6 and can swing into it (MoveIt's Panda SRDF
+  // lists panda_hand / panda_link6 as "Never", not "Adjacent").
+  std::vector<int> body(static_cast<std::size_t>(n));
+  for (int l = 0; l < n; ++l) {  // links are ordered parents first
+    const int j = model.link(l).parent_joint;
+    body[static_cast<std::size_t>(l)] =
+        (j >= 0 && model.joint(j).type == JointType::kFixed)
+            ? body[static_cast<std::size_t>(model.joint(j).parent_link)]
+            : l;
+  }
+  AllowedCollisionMatrix acm(n);
+  for (int a = 0; a < n; ++a) {
+    for (int b = a + 1; b < n; ++b) {
+      if (joined[cell(a, b)] ||
+          body[static_cast<std::size_t>(a)] == body[static_cast<std::size_t>(b)]) {
+        acm.allow(a, b, CollisionAllowance::kAdjacent);
       }
-      if (body_has_geometry[static_cast<std::size_t>(up)] || parent_of(up) < 0) break;
-      up = body[static_cast<std::size_t>(parent_of(up))];
     }
   }
   return acm;
