@@ -153,6 +153,58 @@ void check_boxes(double padding) {
 TEST(SelfCollision, TwoBoxesAnalytic) { check_boxes(0.0); }
 TEST(SelfCollision, TwoBoxesWithPadding) { check_boxes(0.01); }
 
+// base: cylinder r 0.1, length 0.4, axis along the link's z (URDF convention), turned by the
+// collision origin onto x; ball: sphere r 0.05 sliding along z at x = 0.05. The ball meets the
+// curved side: gap q - 0.15.
+const char* const kCylinder = R"(<robot name="cylinder">
+  <link name="base"><collision><origin rpy="0 1.5707963267948966 0"/>
+    <geometry><cylinder radius="0.1" length="0.4"/></geometry></collision></link>
+  <link name="ball"><collision><geometry><sphere radius="0.05"/></geometry></collision></link>
+  <joint name="lift" type="prismatic">
+    <parent link="base"/><child link="ball"/><origin xyz="0.05 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/>
+  </joint>
+  <link name="cap"><collision><geometry><sphere radius="0.05"/></geometry></collision></link>
+  <joint name="reach" type="prismatic">
+    <parent link="base"/><child link="cap"/><axis xyz="1 0 0"/>
+    <limit lower="0.3" upper="1" effort="1" velocity="1"/>
+  </joint>
+</robot>)";
+
+TEST(SelfCollision, CylinderAnalytic) {
+  const auto model = load_string(kCylinder);
+  const int n = static_cast<int>(model->links().size());
+  AllowedCollisionMatrix acm(n);
+  acm.allow(model->link_index("ball"), model->link_index("cap"), CollisionAllowance::kUser);
+  SelfCollisionChecker checker(model, acm);
+  const int lift = model->variable_index("lift");
+  const int reach = model->variable_index("reach");
+  for (const double q : {0.4, 0.16, 0.15 + 1e-8, 0.15 - 1e-8, 0.12, -0.13, -0.2}) {
+    SCOPED_TRACE(q);
+    Eigen::VectorXd config(2);
+    config[lift] = q;
+    config[reach] = 1.0;  // the cap ball far beyond the cylinder's end
+    const double s = q > 0 ? 1.0 : -1.0;
+    const LinkPairProximity p = checker.min_distance(config);
+    EXPECT_NEAR(p.distance, std::abs(q) - 0.15, kTol);
+    EXPECT_EQ(p.link_b_name, "ball");
+    EXPECT_LT((p.point_a - Eigen::Vector3d(0.05, 0, 0.1 * s)).norm(), kTol);
+    EXPECT_LT((p.normal - Eigen::Vector3d(0, 0, s)).norm(), 1e-6);
+    EXPECT_EQ(checker.in_collision(config), std::abs(q) < 0.15);
+  }
+  // The flat end at x = 0.2: the cap ball at x = reach, gap reach - 0.25.
+  for (const double r : {0.3, 0.26, 0.25 + 1e-8, 0.25 - 1e-8}) {
+    SCOPED_TRACE(r);
+    Eigen::VectorXd config(2);
+    config[lift] = 0.9;  // the side ball far above
+    config[reach] = r;
+    const LinkPairProximity p = checker.min_distance(config);
+    EXPECT_NEAR(p.distance, r - 0.25, kTol);
+    EXPECT_EQ(p.link_b_name, "cap");
+    EXPECT_NEAR(p.point_a.x(), 0.2, kTol);
+  }
+}
+
 TEST(SelfCollision, PaddingChangedAfterConstructionIsUsed) {
   auto owned = std::make_shared<RobotModel>(RobotModel::from_urdf_string(kTwoSpheres, "."));
   SelfCollisionChecker checker(owned, AllowedCollisionMatrix(2));
