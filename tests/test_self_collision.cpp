@@ -326,9 +326,12 @@ BruteForce brute_force(const RobotModel& model, const AllowedCollisionMatrix& ac
   return out;
 }
 
-void compare_with_brute_force(const test::RobotFile& robot, int samples) {
-  SCOPED_TRACE(robot.id);
-  const auto model = std::make_shared<const RobotModel>(RobotModel::from_urdf_file(robot.urdf));
+void compare_with_brute_force(const test::RobotFile& robot, int samples, double padding = 0.0) {
+  SCOPED_TRACE(robot.id + " padding " + std::to_string(padding));
+  RobotLoadOptions options;
+  options.default_padding = padding;
+  const auto model =
+      std::make_shared<const RobotModel>(RobotModel::from_urdf_file(robot.urdf, options));
   const AllowedCollisionMatrix acm = AllowedCollisionMatrix::from_adjacency(*model);
   SelfCollisionChecker checker(model, acm);
   std::mt19937_64 rng(11);
@@ -367,9 +370,9 @@ void compare_with_brute_force(const test::RobotFile& robot, int samples) {
     total += bf.shape_pairs;
   }
   std::printf(
-      "[ %s ] %d samples, %d in self-collision; min_distance ran GJK on %.1f%% of %ld "
-      "shape pairs\n",
-      robot.id.c_str(), samples, colliding,
+      "[ %s, padding %g ] %d samples, %d in self-collision; min_distance ran GJK on %.1f%% of "
+      "%ld shape pairs\n",
+      robot.id.c_str(), padding, samples, colliding,
       100.0 * static_cast<double>(exact) / static_cast<double>(total), total);
   // Culling culls.
   EXPECT_LT(exact, total);
@@ -377,6 +380,14 @@ void compare_with_brute_force(const test::RobotFile& robot, int samples) {
 
 TEST(SelfCollision, CullingMatchesBruteForceOwnArm) {
   compare_with_brute_force(test::own_arm(), 1000);
+}
+
+TEST(SelfCollision, CullingMatchesBruteForceWithPadding) {
+  // Padding grows the bounding balls; a ball that forgot it would cull pairs that touch.
+  compare_with_brute_force(test::own_arm(), 500, 0.03);
+  for (const test::RobotFile& robot : test::shared_robots()) {
+    if (robot.id == "panda" || robot.id == "baxter") compare_with_brute_force(robot, 300, 0.03);
+  }
 }
 
 TEST(SelfCollision, CullingMatchesBruteForcePanda) {
