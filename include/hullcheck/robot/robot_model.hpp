@@ -48,7 +48,7 @@ struct CollisionShape {
   Shape unpadded;
   /// Link frame -> shape frame (URDF <collision><origin>).
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
-  /// Ball bounding `shape` (padding included): centre in the link frame and radius, m.
+  /// Ball bounding `shape` (padding included): centre in the shape frame and radius, m.
   Eigen::Vector3d bounding_center = Eigen::Vector3d::Zero();
   double bounding_radius = 0.0;
   /// "box", "sphere", "cylinder", or the resolved mesh file path.

@@ -1,0 +1,112 @@
+// CollisionChecker: a robot configuration against the robot itself and a static scene.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <hullcheck/query_result.hpp>
+#include <hullcheck/robot/allowed_collision_matrix.hpp>
+#include <hullcheck/robot/robot_model.hpp>
+#include <hullcheck/scene/planning_scene.hpp>
+#include <limits>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+namespace hullcheck {
+
+/// The closest (or deepest) checked pair at a configuration: a robot shape against another
+/// robot shape (self) or against an obstacle.
+struct ClearanceResult {
+  /// Signed distance, m: > 0 apart, < 0 overlapping (minus the penetration depth, by EPA);
+  /// +inf when nothing is checked.
+  double distance = std::numeric_limits<double>::infinity();
+  bool self = false;        ///< true: robot vs robot; false: robot vs obstacle.
+  int link_a = -1;          ///< Robot link of A.
+  int shape_a = -1;         ///< Index into that link's shapes.
+  int link_b = -1;          ///< Robot link of B when `self`, else -1.
+  int shape_b = -1;         ///< Shape index of link_b when `self`.
+  int obstacle = -1;        ///< Index into the scene's obstacles when not `self`.
+  std::string_view name_a;  ///< Link name of A; link or obstacle name of B. Valid while the
+  std::string_view name_b;  ///< checker lives.
+  Eigen::Vector3d point_a{0, 0, 0};  ///< Witness points, model frame, m.
+  Eigen::Vector3d point_b{0, 0, 0};
+  Eigen::Vector3d normal{0, 0, 0};  ///< Unit, from A to B; point_b - point_a = distance*normal.
+  Status status = Status::kConverged;
+  int exact_queries = 0;  ///< Shape pairs that needed GJK (the rest were culled).
+};
+
+/// Checks configurations of one robot against its enabled self pairs (allowed-collision matrix)
+/// and the obstacles of one static scene (minus the scene's allowed link/object pairs), with
+/// the robot's padding.
+///
+/// Broad phase: robot shapes' bounding balls against each other and against each obstacle's
+/// oriented bounding box; exact GJK/EPA (core queries, their tolerances) for the survivors.
+/// All query methods are const and thread-safe: scratch storage is per thread, allocated on a
+/// thread's first call and reused, so queries do not allocate after that.
+class CollisionChecker {
+ public:
+  /// Throws InputError when the matrix is not sized for the model, or when the scene's allowed
+  /// pairs name something that is neither a link nor an object (message names it).
+  CollisionChecker(std::shared_ptr<const RobotModel> model, AllowedCollisionMatrix matrix,
+                   PlanningScene scene);
+
+  const RobotModel& model() const { return *model_; }
+  const PlanningScene& scene() const { return scene_; }
+  const AllowedCollisionMatrix& matrix() const { return matrix_; }
+
+  /// True when no checked pair overlaps at configuration q (checked: count and finiteness).
+  /// Stops at the first overlap found.
+  bool is_valid(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  /// Minimum signed distance over all checked pairs at q, with the pair and witnesses.
+  ClearanceResult clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  /// The same for link poses from RobotModel::compute_link_poses.
+  bool is_valid_at(const std::vector<Eigen::Isometry3d>& link_poses) const;
+  ClearanceResult clearance_at(const std::vector<Eigen::Isometry3d>& link_poses) const;
+
+  /// Upper bound, m, on how far any point of any checked robot shape moves relative to any
+  /// other checked shape or obstacle along the straight joint-space motion from q0 to q1 (each
+  /// value interpolated linearly): a motion whose bound is below the clearance at q0 cannot
+  /// collide. From the kinematic chain: per joint, |dq| times the largest distance from its
+  /// axis origin to any point of the shapes it moves (prismatic: |dq|); doubled when self pairs
+  /// are checked (both links may move).
+  double motion_bound(const Eigen::Ref<const Eigen::VectorXd>& q0,
+                      const Eigen::Ref<const Eigen::VectorXd>& q1) const;
+
+ private:
+  struct RobotShape {
+    int link;
+    int shape;
+    Eigen::Vector3d center;  // bounding ball centre in the link frame
+    double radius;
+    std::string_view link_name;
+  };
+  struct ObstacleBox {           // oriented bounding box of an obstacle (margin included)
+    Eigen::Matrix3d rotation_t;  // world -> box frame rotation
+    Eigen::Vector3d center;      // world
+    Eigen::Vector3d half_extents;
+  };
+  struct SelfPair {
+    int a, b;  // indices into shapes_
+  };
+  struct EnvironmentPair {
+    int shape;     // index into shapes_
+    int obstacle;  // index into scene_.obstacles
+  };
+  struct Scratch;
+  Scratch& scratch() const;
+  void place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const;
+  double box_gap(const ObstacleBox& box, const Eigen::Vector3d& c, double radius) const;
+
+  std::shared_ptr<const RobotModel> model_;
+  AllowedCollisionMatrix matrix_;
+  PlanningScene scene_;
+  std::vector<RobotShape> shapes_;
+  std::vector<ObstacleBox> boxes_;
+  std::vector<SelfPair> self_pairs_;
+  std::vector<EnvironmentPair> environment_pairs_;
+  // Motion bound: per variable, the largest lever arm over the shapes it moves (m; 1 for
+  // prismatic variables, which move points by |dq|).
+  Eigen::VectorXd lever_;
+  bool has_self_pairs_ = false;
+};
+
+}  // namespace hullcheck
