@@ -6,6 +6,7 @@
 #include <hullcheck/robot/allowed_collision_matrix.hpp>
 #include <hullcheck/robot/collision_matrix_generation.hpp>
 #include <hullcheck/robot/mesh_file.hpp>
+#include <hullcheck/robot/planning_group.hpp>
 #include <hullcheck/robot/resource_path.hpp>
 #include <hullcheck/robot/robot_model.hpp>
 #include <hullcheck/robot/self_collision.hpp>

@@ -1,0 +1,45 @@
+// StateValidityChecker: OMPL's validity checker backed by hullcheck's exact queries.
+#pragma once
+
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/StateValidityChecker.h>
+
+#include <hullcheck/ompl/joint_state_space.hpp>
+#include <hullcheck/scene/collision_checker.hpp>
+#include <memory>
+
+namespace hullcheck {
+
+/// Validity of OMPL states of a JointStateSpace: robot against its enabled self pairs and the
+/// scene's obstacles (CollisionChecker), with the robot's padding.
+///
+/// - isValid(state): boolean collision test with early exit (cheapest).
+/// - clearance(state): exact minimum signed distance over all checked pairs, m (negative: the
+///   penetration depth of the deepest pair, by EPA). +inf when nothing is checked.
+/// - isValid(state, dist): both in one pass.
+/// - closest(state): the pair behind clearance(), with link/obstacle names and witnesses.
+/// Specs: clearanceComputationType EXACT, hasValidDirectionComputation false. Thread-safe:
+/// every method is const and uses per-thread scratch (no lock), as OMPL's parallel planners
+/// need.
+class StateValidityChecker : public ::ompl::base::StateValidityChecker {
+ public:
+  StateValidityChecker(const ::ompl::base::SpaceInformationPtr& si,
+                       std::shared_ptr<const JointStateSpace> space,
+                       std::shared_ptr<const CollisionChecker> checker);
+
+  bool isValid(const ::ompl::base::State* state) const override;
+  bool isValid(const ::ompl::base::State* state, double& dist) const override;
+  double clearance(const ::ompl::base::State* state) const override;
+  ClearanceResult closest(const ::ompl::base::State* state) const;
+
+  const JointStateSpace& joint_space() const { return *space_; }
+  const CollisionChecker& collision_checker() const { return *checker_; }
+
+ private:
+  Eigen::VectorXd& configuration(const ::ompl::base::State* state) const;
+
+  std::shared_ptr<const JointStateSpace> space_;
+  std::shared_ptr<const CollisionChecker> checker_;
+};
+
+}  // namespace hullcheck

@@ -1,0 +1,43 @@
+#include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+
+#include <cmath>
+#include <hullcheck/errors.hpp>
+#include <hullcheck/ompl/objectives.hpp>
+
+namespace hullcheck {
+
+namespace ob = ::ompl::base;
+
+ob::OptimizationObjectivePtr make_max_min_clearance_objective(const ob::SpaceInformationPtr& si) {
+  return std::make_shared<ob::MaximizeMinClearanceObjective>(si);
+}
+
+ClearanceCostObjective::ClearanceCostObjective(const ob::SpaceInformationPtr& si, double scale)
+    : ob::StateCostIntegralObjective(si, /*enableMotionCostInterpolation=*/true), scale_(scale) {
+  if (!(scale > 0.0) || !std::isfinite(scale)) {
+    throw InputError("ClearanceCostObjective: scale must be finite and > 0");
+  }
+  description_ = "Clearance cost (integral of exp(-clearance/scale))";
+}
+
+ob::Cost ClearanceCostObjective::stateCost(const ob::State* s) const {
+  const double d = si_->getStateValidityChecker()->clearance(s);
+  // Far from everything (or nothing checked): no cost.
+  return ob::Cost(std::isfinite(d) ? std::exp(-d / scale_) : 0.0);
+}
+
+ob::OptimizationObjectivePtr make_length_clearance_objective(const ob::SpaceInformationPtr& si,
+                                                             double length_weight,
+                                                             double clearance_weight,
+                                                             double scale) {
+  if (!(length_weight >= 0.0) || !(clearance_weight >= 0.0)) {
+    throw InputError("make_length_clearance_objective: weights must be >= 0");
+  }
+  auto multi = std::make_shared<ob::MultiOptimizationObjective>(si);
+  multi->addObjective(std::make_shared<ob::PathLengthOptimizationObjective>(si), length_weight);
+  multi->addObjective(std::make_shared<ClearanceCostObjective>(si, scale), clearance_weight);
+  return multi;
+}
+
+}  // namespace hullcheck

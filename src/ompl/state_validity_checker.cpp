@@ -1,0 +1,46 @@
+#include <hullcheck/errors.hpp>
+#include <hullcheck/ompl/state_validity_checker.hpp>
+
+namespace hullcheck {
+
+StateValidityChecker::StateValidityChecker(const ::ompl::base::SpaceInformationPtr& si,
+                                           std::shared_ptr<const JointStateSpace> space,
+                                           std::shared_ptr<const CollisionChecker> checker)
+    : ::ompl::base::StateValidityChecker(si),
+      space_(std::move(space)),
+      checker_(std::move(checker)) {
+  if (!space_ || !checker_) throw InputError("StateValidityChecker: null space or checker");
+  if (&space_->model() != &checker_->model()) {
+    throw InputError("StateValidityChecker: the space and the checker use different robot models");
+  }
+  specs_.clearanceComputationType = ::ompl::base::StateValidityCheckerSpecs::EXACT;
+  specs_.hasValidDirectionComputation = false;
+}
+
+Eigen::VectorXd& StateValidityChecker::configuration(const ::ompl::base::State* state) const {
+  thread_local Eigen::VectorXd q;
+  if (q.size() != space_->fixed_configuration().size()) {
+    q.resize(space_->fixed_configuration().size());
+  }
+  space_->to_configuration(state, q);
+  return q;
+}
+
+bool StateValidityChecker::isValid(const ::ompl::base::State* state) const {
+  return checker_->is_valid(configuration(state));
+}
+
+bool StateValidityChecker::isValid(const ::ompl::base::State* state, double& dist) const {
+  dist = checker_->clearance(configuration(state)).distance;
+  return dist > 0.0;
+}
+
+double StateValidityChecker::clearance(const ::ompl::base::State* state) const {
+  return checker_->clearance(configuration(state)).distance;
+}
+
+ClearanceResult StateValidityChecker::closest(const ::ompl::base::State* state) const {
+  return checker_->clearance(configuration(state));
+}
+
+}  // namespace hullcheck
