@@ -3,18 +3,25 @@
 #include <exception>
 #include <iostream>
 
+#include "exit_codes.hpp"
 #include "inspect_command.hpp"
+#include "plan_command.hpp"
 #include "srdf_command.hpp"
+#include "validate_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"hullcheck: exact collision and distance queries for robots"};
   app.require_subcommand(1);
   hullcheck::cli::add_inspect_command(app);
   hullcheck::cli::add_srdf_command(app);
+  hullcheck::cli::add_plan_command(app);
+  hullcheck::cli::add_validate_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const hullcheck::cli::ExitWith& e) {
+    return e.code;
   } catch (const std::exception& e) {
     std::cerr << "hullcheck: error: " << e.what() << "\n";
     return 1;

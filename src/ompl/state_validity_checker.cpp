@@ -23,6 +23,7 @@ Eigen::VectorXd& StateValidityChecker::configuration(const ::ompl::base::State* 
     q.resize(space_->fixed_configuration().size());
   }
   space_->to_configuration(state, q);
+  checks_.fetch_add(1, std::memory_order_relaxed);
   return q;
 }
 

@@ -4,6 +4,7 @@
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/StateValidityChecker.h>
 
+#include <atomic>
 #include <hullcheck/ompl/joint_state_space.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
 #include <memory>
@@ -32,6 +33,10 @@ class StateValidityChecker : public ::ompl::base::StateValidityChecker {
   double clearance(const ::ompl::base::State* state) const override;
   ClearanceResult closest(const ::ompl::base::State* state) const;
 
+  /// Validity and clearance computations so far (all threads; relaxed atomic counter).
+  unsigned long check_count() const { return checks_.load(std::memory_order_relaxed); }
+  void reset_check_count() { checks_.store(0); }
+
   const JointStateSpace& joint_space() const { return *space_; }
   const CollisionChecker& collision_checker() const { return *checker_; }
 
@@ -40,6 +45,7 @@ class StateValidityChecker : public ::ompl::base::StateValidityChecker {
 
   std::shared_ptr<const JointStateSpace> space_;
   std::shared_ptr<const CollisionChecker> checker_;
+  mutable std::atomic<unsigned long> checks_{0};
 };
 
 }  // namespace hullcheck

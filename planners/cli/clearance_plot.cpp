@@ -1,0 +1,108 @@
+#include "clearance_plot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <hullcheck/errors.hpp>
+
+namespace hullcheck::cli {
+namespace {
+
+std::string escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '<') {
+      out += "&lt;";
+    } else if (c == '>') {
+      out += "&gt;";
+    } else if (c == '&') {
+      out += "&amp;";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void write_clearance_svg(const std::string& file, const std::string& title,
+                         const std::vector<ClearanceSample>& samples) {
+  std::ofstream out(file);
+  if (!out) throw InputError("plot '" + file + "': cannot write");
+  const double width = 800, height = 400, left = 70, right = 20, top = 40, bottom = 50;
+  double x_max = 0, y_min = 0, y_max = 0;
+  for (const ClearanceSample& s : samples) {
+    x_max = std::max(x_max, s.position);
+    if (std::isfinite(s.clearance)) {
+      y_min = std::min(y_min, s.clearance);
+      y_max = std::max(y_max, s.clearance);
+    }
+  }
+  if (x_max <= 0) x_max = 1;
+  if (y_max <= y_min) y_max = y_min + 1e-3;
+  const double pad = 0.05 * (y_max - y_min);
+  y_min -= pad;
+  y_max += pad;
+  const auto px = [&](double x) { return left + (width - left - right) * x / x_max; };
+  const auto py = [&](double y) {
+    return top + (height - top - bottom) * (y_max - y) / (y_max - y_min);
+  };
+  char buf[256];
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+      << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
+      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+      << "<text x=\"" << width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">"
+      << escape(title) << "</text>\n";
+  // Axes, ticks and labels.
+  std::snprintf(buf, sizeof buf,
+                "<line x1=\"%g\" y1=\"%g\" x2=\"%g\" y2=\"%g\" stroke=\"black\"/>\n"
+                "<line x1=\"%g\" y1=\"%g\" x2=\"%g\" y2=\"%g\" stroke=\"black\"/>\n",
+                left, top, left, height - bottom, left, height - bottom, width - right,
+                height - bottom);
+  out << buf;
+  for (int i = 0; i <= 5; ++i) {
+    const double y = y_min + (y_max - y_min) * i / 5.0;
+    std::snprintf(buf, sizeof buf,
+                  "<text x=\"%g\" y=\"%g\" text-anchor=\"end\">%.3g</text>\n"
+                  "<line x1=\"%g\" y1=\"%g\" x2=\"%g\" y2=\"%g\" stroke=\"#ddd\"/>\n",
+                  left - 6, py(y) + 4, y, left, py(y), width - right, py(y));
+    out << buf;
+    const double x = x_max * i / 5.0;
+    std::snprintf(buf, sizeof buf, "<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">%.3g</text>\n",
+                  px(x), height - bottom + 18, x);
+    out << buf;
+  }
+  std::snprintf(buf, sizeof buf,
+                "<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">path length (joint space)</text>\n"
+                "<text x=\"16\" y=\"%g\" transform=\"rotate(-90 16 %g)\" "
+                "text-anchor=\"middle\">signed clearance (m)</text>\n",
+                (left + width - right) / 2, height - 10, (top + height - bottom) / 2,
+                (top + height - bottom) / 2);
+  out << buf;
+  if (y_min < 0 && y_max > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "<line x1=\"%g\" y1=\"%g\" x2=\"%g\" y2=\"%g\" stroke=\"red\" "
+                  "stroke-dasharray=\"4 3\"/>\n",
+                  left, py(0), width - right, py(0));
+    out << buf;
+  }
+  out << "<polyline fill=\"none\" stroke=\"#1f77b4\" stroke-width=\"1.5\" points=\"";
+  for (const ClearanceSample& s : samples) {
+    if (!std::isfinite(s.clearance)) continue;
+    std::snprintf(buf, sizeof buf, "%.2f,%.2f ", px(s.position), py(s.clearance));
+    out << buf;
+  }
+  out << "\"/>\n";
+  for (const ClearanceSample& s : samples) {
+    if (!s.waypoint || !std::isfinite(s.clearance)) continue;
+    std::snprintf(buf, sizeof buf, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3\" fill=\"%s\"/>\n",
+                  px(s.position), py(s.clearance), s.clearance > 0 ? "#1f77b4" : "red");
+    out << buf;
+  }
+  out << "</svg>\n";
+  if (!out) throw InputError("plot '" + file + "': write failed");
+}
+
+}  // namespace hullcheck::cli

@@ -1,0 +1,125 @@
+#include "plan_command.hpp"
+
+#include <ompl/util/Console.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "exit_codes.hpp"
+#include "path_file.hpp"
+#include "planner_factory.hpp"
+#include "problem.hpp"
+
+namespace hullcheck::cli {
+namespace {
+
+struct PlanSettings {
+  WorldOptions world;
+  ProblemOptions problem;
+  std::string planner = "RRTConnect";
+  std::string objective = "length";
+  double time = 10.0;
+  bool simplify = false;
+  std::string out;
+  std::string viewer;
+  bool discrete = false;
+  bool verbose = false;
+};
+
+// Reports an invalid start or goal with its deepest colliding pair; true when valid.
+bool check_endpoint(const CollisionChecker& checker, const Eigen::VectorXd& q, const char* what) {
+  if (checker.is_valid(q)) return true;
+  const ClearanceResult r = checker.clearance(q);
+  std::printf("%s state is in collision: %s\n", what, describe_pair(r).c_str());
+  return false;
+}
+
+void run(const PlanSettings& s) {
+  if (!s.verbose) ::ompl::msg::setLogLevel(::ompl::msg::LOG_WARN);
+  const LoadedWorld world = s.world.load();
+  std::vector<int> variables;
+  Eigen::VectorXd start, goal;
+  s.problem.resolve(world, &variables, &start, &goal);
+  const bool start_ok = check_endpoint(*world.checker, start, "start");
+  const bool goal_ok = check_endpoint(*world.checker, goal, "goal");
+  if (!start_ok || !goal_ok) throw ExitWith{kExitInvalidProblem};
+
+  PlanningSetup planning =
+      make_planning_setup(world.checker, variables, start,
+                          s.discrete ? MotionChecking::kDiscrete : MotionChecking::kGuaranteed);
+  ::ompl::geometric::SimpleSetup& ss = *planning.setup;
+  const auto si = ss.getSpaceInformation();
+  ss.setStartAndGoalStates(planning.state(start), planning.state(goal));
+  ss.setOptimizationObjective(make_objective(s.objective, si));
+  ss.setPlanner(make_planner(s.planner, si));
+  ss.setup();
+  const auto t0 = std::chrono::steady_clock::now();
+  const ::ompl::base::PlannerStatus status = ss.solve(s.time);
+  const double solve_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const bool solved = status == ::ompl::base::PlannerStatus::EXACT_SOLUTION;
+  std::printf("planner %s, objective %s: %s in %.3f s (%lu validity checks)\n",
+              ss.getPlanner()->getName().c_str(), s.objective.c_str(),
+              solved ? "solved" : status.asString().c_str(), solve_time,
+              planning.validity->check_count());
+  if (!solved) throw ExitWith{kExitNotSolved};
+
+  ::ompl::geometric::PathGeometric& path = ss.getSolutionPath();
+  if (s.simplify) {
+    const auto t1 = std::chrono::steady_clock::now();
+    simplify_with_objective(si, path, ss.getOptimizationObjective(), 1.0,
+                            ss.getProblemDefinition()->getGoal());
+    std::printf("simplified (objective-aware) in %.3f s\n",
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count());
+  }
+  double min_clearance = INFINITY;
+  ClearanceResult closest;
+  for (std::size_t i = 0; i < path.getStateCount(); ++i) {
+    const ClearanceResult r = planning.validity->closest(path.getState(i));
+    if (r.distance < min_clearance) {
+      min_clearance = r.distance;
+      closest = r;
+    }
+  }
+  std::printf("path: %zu waypoints, length %.4f, min waypoint clearance %.4f m (%s)\n",
+              path.getStateCount(), path.length(), min_clearance, describe_pair(closest).c_str());
+  JointPath out;
+  for (int v : variables)
+    out.joint_names.push_back(world.model->joint(world.model->variable_joint(v)).name);
+  for (std::size_t i = 0; i < path.getStateCount(); ++i) {
+    const Eigen::VectorXd q = planning.configuration(path.getState(i));
+    Eigen::VectorXd row(static_cast<Eigen::Index>(variables.size()));
+    for (std::size_t k = 0; k < variables.size(); ++k)
+      row[static_cast<Eigen::Index>(k)] = q[variables[k]];
+    out.waypoints.push_back(row);
+  }
+  if (!s.out.empty()) {
+    write_joint_path(s.out, out);
+    std::printf("path written to %s\n", s.out.c_str());
+  }
+}
+
+}  // namespace
+
+void add_plan_command(CLI::App& app) {
+  auto s = std::make_shared<PlanSettings>();
+  CLI::App* command = app.add_subcommand(
+      "plan", "Plan one problem (scene + request, or start and goal) with an OMPL planner");
+  s->world.add_to(*command, false);
+  s->problem.add_to(*command);
+  command->add_option("--planner", s->planner, "OMPL geometric planner (default RRTConnect)");
+  command->add_option("--objective", s->objective,
+                      "length | clearance | clearance-cost | length+clearance (default length)");
+  command->add_option("--time", s->time, "Planning time limit, s (default 10)");
+  command->add_flag("--simplify", s->simplify, "Simplify the path with the objective");
+  command->add_option("--out", s->out, "Write the path: CSV, or JSON when PATH ends in .json");
+  command->add_flag("--discrete", s->discrete,
+                    "Check motions at OMPL's discrete resolution instead of the guaranteed mode");
+  command->add_flag("--verbose", s->verbose, "Show OMPL's informational messages");
+  command->footer(
+      "Exit status: 0 solved, 1 bad input, 2 start or goal in collision, 3 not solved in time.");
+  command->callback([s] { run(*s); });
+}
+
+}  // namespace hullcheck::cli
