@@ -59,10 +59,17 @@ void run(const PlanSettings& s) {
   const double solve_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const bool solved = status == ::ompl::base::PlannerStatus::EXACT_SOLUTION;
-  std::printf("planner %s, objective %s: %s in %.3f s (%lu validity checks)\n",
+  std::printf("planner %s, objective %s: %s in %.3f s (%lu state checks",
               ss.getPlanner()->getName().c_str(), s.objective.c_str(),
               solved ? "solved" : status.asString().c_str(), solve_time,
               planning.validity->check_count());
+  if (const auto guaranteed =
+          std::dynamic_pointer_cast<GuaranteedMotionValidator>(si->getMotionValidator())) {
+    std::printf(", %lu motion checks in %lu conservative-advancement steps",
+                guaranteed->valid_motion_count() + guaranteed->invalid_motion_count(),
+                guaranteed->step_count());
+  }
+  std::printf(")\n");
   if (!solved) throw ExitWith{kExitNotSolved};
 
   ::ompl::geometric::PathGeometric& path = ss.getSolutionPath();

@@ -26,11 +26,13 @@ bool GuaranteedMotionValidator::advance(const ob::State* s1, const ob::State* s2
                                         double* last_free) const {
   const JointStateSpace& joints = validity_->joint_space();
   const CollisionChecker& checker = validity_->collision_checker();
-  thread_local Eigen::VectorXd q0, q1, q;
+  // Per-thread scratch: sized once, reused (no allocation per motion).
+  thread_local Eigen::VectorXd q0, q1, dq, at;
   const auto n = joints.fixed_configuration().size();
   q0.resize(n);
   q1.resize(n);
-  q.resize(n);
+  dq.resize(n);
+  at.resize(n);
   joints.to_configuration(s1, q0);
   joints.to_configuration(s2, q1);
   // Continuous joints: the end value reached the short way round, as SO2 interpolation does.
@@ -39,21 +41,20 @@ bool GuaranteedMotionValidator::advance(const ob::State* s1, const ob::State* s2
       q1[v] = q0[v] + std::remainder(q1[v] - q0[v], 2.0 * M_PI);
     }
   }
-  const double full_bound = checker.motion_bound(q0, q1);
+  dq = q1 - q0;  // the motion per unit of t
   double t = 0.0;
   *last_free = 0.0;
   for (int step = 0; step < max_steps_; ++step) {
-    q = q0 + t * (q1 - q0);
-    const double d = checker.clearance(q).distance;
-    if (!(d > min_clearance_)) return false;
+    at = q0 + t * dq;
+    const double advance = checker.safe_advance(at, dq, min_clearance_);
+    steps_.fetch_add(1, std::memory_order_relaxed);
+    if (advance < 0.0) return false;  // this state is (nearly) in contact
     *last_free = t;
-    const double rest = (1.0 - t) * full_bound;  // the bound is linear in the joint motion
-    if (rest < d) {
-      // The end state itself is within the bound's reach: free as well.
+    if (t + advance >= 1.0) {
       *last_free = 1.0;
       return true;
     }
-    t += (1.0 - t) * (d / rest);
+    t += advance;
   }
   return false;
 }

@@ -41,6 +41,7 @@ struct CollisionChecker::Scratch {
   std::vector<Eigen::Isometry3d> shape_poses;
   std::vector<Eigen::Vector3d> centers;
   std::vector<double> lower_bounds;
+  std::vector<double> motions;
 };
 
 CollisionChecker::Scratch& CollisionChecker::scratch() const {
@@ -132,42 +133,76 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
     }
   }
 
-  // Lever arms for motion_bound. reach[l]: bound on the distance from a joint's origin to the
-  // frame origin of link l below it, accumulated along the chain.
-  lever_ = Eigen::VectorXd::Zero(model_->variable_count());
+  // Lever arms. For each movable joint, the largest distance from its origin to any point of
+  // each shape it moves: reach[l] bounds the distance from the joint's origin to the frame
+  // origin of link l below it (accumulated along the chain, prismatic travel included).
+  const int variables = model_->variable_count();
+  lever_ = Eigen::VectorXd::Zero(variables);
+  shape_levers_ = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(shapes_.size()), variables);
+  self_pair_levers_ =
+      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(self_pairs_.size()), variables);
+  const int joint_count = static_cast<int>(model_->joints().size());
+  // arm(j, s): motion of shape s per unit of joint j's own value (0 when j does not move s).
+  Eigen::MatrixXd arm =
+      Eigen::MatrixXd::Zero(joint_count, static_cast<Eigen::Index>(shapes_.size()));
   std::vector<double> reach(static_cast<std::size_t>(n));
-  for (const Joint& joint : model_->joints()) {
+  for (int ji = 0; ji < joint_count; ++ji) {
+    const Joint& joint = model_->joint(ji);
     if (joint.type == JointType::kFixed) continue;
-    const int variable = joint.mimic_variable >= 0 ? joint.mimic_variable : joint.variable;
-    const double multiplier = joint.mimic_variable >= 0 ? std::abs(joint.mimic_multiplier) : 1.0;
-    if (joint.type == JointType::kPrismatic) {
-      lever_[variable] += multiplier;
-      continue;
-    }
-    double arm = 0.0;
     std::vector<int> stack{joint.child_link};
     reach[static_cast<std::size_t>(joint.child_link)] = 0.0;
     while (!stack.empty()) {
       const int l = stack.back();
       stack.pop_back();
-      for (const CollisionShape& cs : model_->link(l).shapes) {
-        arm = std::max(arm, reach[static_cast<std::size_t>(l)] +
-                                (cs.origin * cs.bounding_center).norm() + cs.bounding_radius);
+      for (int sh = first_shape[static_cast<std::size_t>(l)];
+           sh < first_shape[static_cast<std::size_t>(l) + 1]; ++sh) {
+        const RobotShape& rs = shapes_[static_cast<std::size_t>(sh)];
+        arm(ji, sh) = joint.type == JointType::kPrismatic
+                          ? 1.0
+                          : reach[static_cast<std::size_t>(l)] + rs.center.norm() + rs.radius;
       }
       for (int k : model_->link(l).child_joints) {
         const Joint& child = model_->joint(k);
         double travel = 0.0;
         if (child.type == JointType::kPrismatic) {
-          travel = std::max(std::abs(child.lower), std::abs(child.upper)) *
-                       (child.mimic_variable >= 0 ? std::abs(child.mimic_multiplier) : 1.0) +
-                   (child.mimic_variable >= 0 ? std::abs(child.mimic_offset) : 0.0);
+          const double m = child.mimic_variable >= 0 ? std::abs(child.mimic_multiplier) : 1.0;
+          const double o = child.mimic_variable >= 0 ? std::abs(child.mimic_offset) : 0.0;
+          travel = m * std::max(std::abs(child.lower), std::abs(child.upper)) + o;
         }
         reach[static_cast<std::size_t>(child.child_link)] =
             reach[static_cast<std::size_t>(l)] + child.origin.translation().norm() + travel;
         stack.push_back(child.child_link);
       }
     }
-    lever_[variable] += multiplier * arm;
+  }
+  // Joints above each link.
+  std::vector<std::vector<bool>> above(static_cast<std::size_t>(n),
+                                       std::vector<bool>(static_cast<std::size_t>(joint_count)));
+  for (int l = 0; l < n; ++l) {
+    for (int x = l; model_->link(x).parent_joint >= 0;) {
+      const int j = model_->link(x).parent_joint;
+      above[static_cast<std::size_t>(l)][static_cast<std::size_t>(j)] = true;
+      x = model_->joint(j).parent_link;
+    }
+  }
+  for (int ji = 0; ji < joint_count; ++ji) {
+    const Joint& joint = model_->joint(ji);
+    if (joint.type == JointType::kFixed) continue;
+    const int v = joint.mimic_variable >= 0 ? joint.mimic_variable : joint.variable;
+    const double m = joint.mimic_variable >= 0 ? std::abs(joint.mimic_multiplier) : 1.0;
+    lever_[v] += m * arm.row(ji).maxCoeff();
+    shape_levers_.col(v) += m * arm.row(ji).transpose();
+    for (std::size_t p = 0; p < self_pairs_.size(); ++p) {
+      const int a = self_pairs_[p].a, b = self_pairs_[p].b;
+      const bool above_a =
+          above[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(a)].link)]
+               [static_cast<std::size_t>(ji)];
+      const bool above_b =
+          above[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(b)].link)]
+               [static_cast<std::size_t>(ji)];
+      if (above_a == above_b) continue;  // moves both rigidly, or neither
+      self_pair_levers_(static_cast<Eigen::Index>(p), v) += m * arm(ji, above_a ? a : b);
+    }
   }
 }
 
@@ -321,6 +356,84 @@ ClearanceResult CollisionChecker::clearance_at(
     if (i != first && s.lower_bounds[i] < best.distance) evaluate(i);
   }
   return best;
+}
+
+double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                      const Eigen::Ref<const Eigen::VectorXd>& dq,
+                                      double min_clearance) const {
+  model_->check_configuration(q);
+  if (dq.size() != q.size() || !dq.allFinite()) {
+    throw InputError("CollisionChecker::safe_advance: dq must have " + std::to_string(q.size()) +
+                     " finite values");
+  }
+  Scratch& s = scratch();
+  model_->compute_link_poses_unchecked(q.data(), s.link_poses.data());
+  place(s.link_poses, s);
+  const std::size_t n_env = environment_pairs_.size();
+  const std::size_t n_all = n_env + self_pairs_.size();
+  if (s.motions.size() < n_all) s.motions.resize(n_all);
+  const Eigen::VectorXd abs_dq = dq.cwiseAbs();
+  // Per pair: gap lower bound (bounding volumes) and motion per unit s.
+  double best = std::numeric_limits<double>::infinity();
+  std::size_t first = n_all;
+  for (std::size_t i = 0; i < n_all; ++i) {
+    double lb, motion;
+    if (i < n_env) {
+      const EnvironmentPair& p = environment_pairs_[i];
+      lb = box_gap(boxes_[static_cast<std::size_t>(p.obstacle)],
+                   s.centers[static_cast<std::size_t>(p.shape)],
+                   shapes_[static_cast<std::size_t>(p.shape)].radius);
+      motion = shape_levers_.row(p.shape).dot(abs_dq);
+    } else {
+      const SelfPair& p = self_pairs_[i - n_env];
+      lb = (s.centers[static_cast<std::size_t>(p.a)] - s.centers[static_cast<std::size_t>(p.b)])
+               .norm() -
+           shapes_[static_cast<std::size_t>(p.a)].radius -
+           shapes_[static_cast<std::size_t>(p.b)].radius;
+      motion = self_pair_levers_.row(static_cast<Eigen::Index>(i - n_env)).dot(abs_dq);
+    }
+    s.lower_bounds[i] = lb;
+    s.motions[i] = motion;
+    const double key = lb <= min_clearance ? -1.0 : lb / motion;  // inf when motion == 0
+    if (key < best || first == n_all) {
+      best = key;
+      first = i;
+    }
+  }
+  if (n_all == 0) return std::numeric_limits<double>::infinity();
+  // Exact distance of pair i; false when it is within min_clearance.
+  const auto exact = [&](std::size_t i, double* d) {
+    if (i < n_env) {
+      const EnvironmentPair& p = environment_pairs_[i];
+      const RobotShape& rs = shapes_[static_cast<std::size_t>(p.shape)];
+      const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
+      *d = distance(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
+                    s.shape_poses[static_cast<std::size_t>(p.shape)], o.shape, o.pose)
+               .distance;
+    } else {
+      const SelfPair& p = self_pairs_[i - n_env];
+      const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
+      const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
+      *d = distance(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
+                    s.shape_poses[static_cast<std::size_t>(p.a)],
+                    model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
+                    s.shape_poses[static_cast<std::size_t>(p.b)])
+               .distance;
+    }
+    return *d > min_clearance;
+  };
+  double step = std::numeric_limits<double>::infinity();
+  double d = 0.0;
+  if (!exact(first, &d)) return -1.0;
+  step = d / s.motions[first];
+  for (std::size_t i = 0; i < n_all; ++i) {
+    if (i == first) continue;
+    const double lb = s.lower_bounds[i];
+    if (lb > min_clearance && lb >= step * s.motions[i]) continue;  // cannot limit the step
+    if (!exact(i, &d)) return -1.0;
+    step = std::min(step, d / s.motions[i]);
+  }
+  return step;
 }
 
 double CollisionChecker::motion_bound(const Eigen::Ref<const Eigen::VectorXd>& q0,

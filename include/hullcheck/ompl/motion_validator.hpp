@@ -12,11 +12,11 @@ namespace hullcheck {
 
 /// Checks the motion between two states of a JointStateSpace as OMPL interpolates it (real
 /// joints linearly, continuous joints the short way round) by conservative advancement: at each
-/// checked state the exact clearance d is computed; CollisionChecker::motion_bound gives how
-/// far any point of the robot can move over the rest of the motion; when that bound is below
-/// d the rest is free, otherwise the motion advances by the fraction d / bound (nothing can
-/// reach an obstacle meanwhile) and repeats. So an accepted motion is collision-free at every
-/// point, not only at sampled ones — thin obstacles included.
+/// checked state CollisionChecker::safe_advance finds, pair by pair, how far the motion can go
+/// before the pair's shapes could touch (exact distance over a bound on their relative motion
+/// from the kinematic chain and the shapes' radii), and the motion advances by the smallest
+/// such step until it reaches the end. So an accepted motion is collision-free at every point,
+/// not only at sampled ones — thin obstacles included.
 ///
 /// A motion is rejected when a checked state has clearance <= `min_clearance` (m, default
 /// 1e-6: states closer than that count as touching), or after `max_steps` (default 100000)
@@ -37,6 +37,8 @@ class GuaranteedMotionValidator : public ::ompl::base::MotionValidator {
 
   unsigned long valid_motion_count() const { return valid_motions_.load(); }
   unsigned long invalid_motion_count() const { return invalid_motions_.load(); }
+  /// Conservative-advancement steps taken so far (one safe_advance call each).
+  unsigned long step_count() const { return steps_.load(); }
 
  private:
   /// Advances from s1 towards s2; returns the reached fraction (1 when free) and whether free.
@@ -48,6 +50,7 @@ class GuaranteedMotionValidator : public ::ompl::base::MotionValidator {
   int max_steps_;
   mutable std::atomic<unsigned long> valid_motions_{0};
   mutable std::atomic<unsigned long> invalid_motions_{0};
+  mutable std::atomic<unsigned long> steps_{0};
 };
 
 }  // namespace hullcheck

@@ -71,6 +71,17 @@ class CollisionChecker {
   double motion_bound(const Eigen::Ref<const Eigen::VectorXd>& q0,
                       const Eigen::Ref<const Eigen::VectorXd>& q1) const;
 
+  /// One step of conservative advancement along the straight joint-space motion q + s*dq:
+  /// the largest s >= 0 this call can certify, i.e. every configuration q + t*dq with
+  /// 0 <= t <= s is collision-free, or -1 when some checked pair at q is within
+  /// `min_clearance` (m) of touching (or overlapping). Per pair: s_p = distance_p / motion_p
+  /// with motion_p a bound on how far the pair's shapes move relative to each other per unit s
+  /// (joints above both links of a self pair move them together and do not count). Exact
+  /// distances are computed only for pairs whose bounding-volume gap could limit s. Returns
+  /// +inf when nothing moves. Thread-safe, no allocation.
+  double safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q,
+                      const Eigen::Ref<const Eigen::VectorXd>& dq, double min_clearance) const;
+
  private:
   struct RobotShape {
     int link;
@@ -107,6 +118,9 @@ class CollisionChecker {
   // prismatic variables, which move points by |dq|).
   Eigen::VectorXd lever_;
   bool has_self_pairs_ = false;
+  // safe_advance: per robot shape / per self pair, the motion per unit of each variable (m).
+  Eigen::MatrixXd shape_levers_;      // shapes x variables
+  Eigen::MatrixXd self_pair_levers_;  // self pairs x variables
 };
 
 }  // namespace hullcheck
