@@ -1,14 +1,24 @@
 #!/usr/bin/env bash
-# The main job: install what is missing, build (Release) and run the demo: proximity queries on
-# every kind of shape, then the project's own robot inspected at its "ready" pose (link poses,
-# self-collision verdict and closest link pair).
+# The main job: install what is missing, build (Release) and run the planning demo on the
+# project's own robot and scene (robots/hullcheck_arm): plan from the "left" to the "right"
+# group state over the wall on the table (RRTConnect, guaranteed motion checks, objective-aware
+# simplification), then validate the path and plot its clearance profile.
+# Outputs: build/demo/path.csv (the path) and build/demo/clearance.svg (its clearance profile).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DHULLCHECK_BUILD_TESTS=OFF >/dev/null
-cmake --build build/release -j"$(nproc)" --target hullcheck_shapes_demo hullcheck_cli
-./build/release/planners/hullcheck_shapes_demo "$@"
+cmake --build build/release -j"$(nproc)" --target hullcheck_cli
+arm=robots/hullcheck_arm
+world=(--robot "$arm/urdf/hullcheck_arm.urdf" --srdf "$arm/srdf/hullcheck_arm.srdf"
+  --scene "$arm/scenes/table_wall.yaml")
+mkdir -p build/demo
+echo "== hullcheck plan: hullcheck_arm, scene table_wall, group arm, left -> right"
+./build/release/planners/hullcheck plan "${world[@]}" --group arm --start left --goal right \
+  --objective length+clearance --simplify --time 10 --out build/demo/path.csv "$@"
 echo
-echo "== hullcheck inspect: robots/hullcheck_arm at its 'ready' pose"
-./build/release/planners/hullcheck inspect --robot robots/hullcheck_arm/urdf/hullcheck_arm.urdf \
-  --srdf robots/hullcheck_arm/srdf/hullcheck_arm.srdf --state 0,0.3,0,-1.6,0,1.2416,0,0.02
+echo "== hullcheck validate: every waypoint and every motion of the path"
+./build/release/planners/hullcheck validate "${world[@]}" --path build/demo/path.csv \
+  --plot build/demo/clearance.svg
+echo
+echo "path: build/demo/path.csv   clearance profile: build/demo/clearance.svg"

@@ -1,14 +1,62 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SO2StateSpace.h>
 
+#include <algorithm>
 #include <cmath>
 #include <hullcheck/errors.hpp>
 #include <hullcheck/ompl/joint_state_space.hpp>
 #include <set>
+#include <vector>
 
 namespace hullcheck {
 
 namespace ob = ::ompl::base;
+
+namespace {
+
+// Projection on the values of the group's first (up to) three joints in configuration order,
+// the proximal ones that move the robot most; planners like KPIECE need one, and OMPL has no
+// default for compound spaces.
+class ProximalJointsProjection : public ob::ProjectionEvaluator {
+ public:
+  ProximalJointsProjection(const ob::StateSpace* space, const JointStateSpace& joints)
+      : ob::ProjectionEvaluator(space), joints_(joints) {
+    // Dimensions of the state (bounded first, then continuous) sorted by configuration index.
+    std::vector<int> order(static_cast<std::size_t>(joints.dimension()));
+    for (int i = 0; i < joints.dimension(); ++i) order[static_cast<std::size_t>(i)] = i;
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return joints.variables()[static_cast<std::size_t>(a)] <
+             joints.variables()[static_cast<std::size_t>(b)];
+    });
+    order.resize(std::min<std::size_t>(3, order.size()));
+    dims_ = order;
+  }
+  unsigned int getDimension() const override { return static_cast<unsigned>(dims_.size()); }
+  void defaultCellSizes() override {
+    cellSizes_.resize(dims_.size());
+    for (std::size_t i = 0; i < dims_.size(); ++i) {
+      const Joint& j = joints_.model().joint(
+          joints_.model().variable_joint(joints_.variables()[static_cast<std::size_t>(dims_[i])]));
+      const double range =
+          std::isfinite(j.lower) && std::isfinite(j.upper) ? j.upper - j.lower : 2.0 * M_PI;
+      cellSizes_[i] = range > 0.0 ? range / 20.0 : 1.0;
+    }
+  }
+  void project(const ob::State* state, Eigen::Ref<Eigen::VectorXd> projection) const override {
+    thread_local Eigen::VectorXd values;
+    values.resize(joints_.dimension());
+    joints_.to_group_values(state, values);
+    for (std::size_t i = 0; i < dims_.size(); ++i) {
+      projection[static_cast<Eigen::Index>(i)] = values[dims_[i]];
+    }
+  }
+
+ private:
+  const JointStateSpace& joints_;
+  std::vector<int> dims_;
+};
+
+}  // namespace
 
 JointStateSpace::JointStateSpace(std::shared_ptr<const RobotModel> model,
                                  std::vector<int> variables, const Eigen::VectorXd& fixed)
@@ -60,6 +108,8 @@ JointStateSpace::JointStateSpace(std::shared_ptr<const RobotModel> model,
     space_ = compound;
   }
   space_->setName(model_->name());
+  space_->registerDefaultProjection(
+      std::make_shared<ProximalJointsProjection>(space_.get(), *this));
 }
 
 void JointStateSpace::to_group_values(const ob::State* state,

@@ -80,6 +80,41 @@ expect "srdf keeps groups of --srdf" 0 '<group_state name="ready" group="arm">' 
 expect "srdf rejects zero samples" 1 "" "samples must be >= 1" -- \
   "$bin" srdf --robot "$urdf" --samples 0
 
+scene="$arm/scenes/table_wall.yaml"
+world=(--robot "$urdf" --srdf "$srdf" --scene "$scene")
+expect "plan solves left -> right" 0 "solved in" "" -- \
+  "$bin" plan "${world[@]}" --group arm --start left --goal right --simplify --out "$tmp/path.csv"
+expect "plan wrote a CSV path" 0 "^joint1,joint2,joint3,joint4,joint5,joint6,joint7$" "" -- \
+  head -1 "$tmp/path.csv"
+expect "validate accepts the planned path" 0 "path VALID" "" -- \
+  "$bin" validate "${world[@]}" --path "$tmp/path.csv" --plot "$tmp/clearance.svg"
+expect "validate wrote an SVG plot" 0 "<svg" "" -- head -1 "$tmp/clearance.svg"
+expect "plan writes JSON by extension" 0 "solved" "" -- \
+  "$bin" plan "${world[@]}" --group arm --start left --goal right --planner kpiece1 --time 10 \
+  --objective clearance --out "$tmp/path.json"
+expect "JSON path parses back" 0 "path VALID" "" -- \
+  "$bin" validate "${world[@]}" --path "$tmp/path.json"
+printf 'joint1,joint2,joint3,joint4,joint5,joint6,joint7\n0.5,0.5,0,-1.3,0,1,0\n-0.5,0.5,0,-1.3,0,1,0\n' \
+  >"$tmp/through_wall.csv"
+expect "validate rejects a motion through the wall" 2 "motion 0 -> 1: INVALID" "" -- \
+  "$bin" validate "${world[@]}" --path "$tmp/through_wall.csv"
+expect "plan reports a colliding start with its pair" 2 "start state is in collision: link3 - table \\(signed distance -0.0864" "" -- \
+  "$bin" plan "${world[@]}" --group arm --start 0,2.0,0,2.0,0,2.0,0 --goal right
+expect "plan: unknown planner" 1 "" "unknown planner 'NoSuch'" -- \
+  "$bin" plan "${world[@]}" --group arm --start left --goal right --planner NoSuch
+expect "plan: unknown group" 1 "" "no planning group 'legs'" -- \
+  "$bin" plan "${world[@]}" --group legs --start left --goal right
+expect "plan: wrong goal length" 1 "" "2 values given, the group has 7 joints" -- \
+  "$bin" plan "${world[@]}" --group arm --start left --goal 1,2
+expect "plan: missing scene" 1 "" "scene .*cannot open" -- \
+  "$bin" plan --robot "$urdf" --srdf "$srdf" --scene "$tmp/none.yaml" --group arm --start left --goal right
+printf 'joint1,nosuch\n0,0\n' >"$tmp/bad_path.csv"
+expect "validate: unknown joint in path" 1 "" "'nosuch' is not an active joint" -- \
+  "$bin" validate "${world[@]}" --path "$tmp/bad_path.csv"
+printf 'joint1,joint2\n0,abc\n' >"$tmp/bad_value.csv"
+expect "validate: bad number in path" 1 "" "line 2: 'abc' is not a finite number" -- \
+  "$bin" validate "${world[@]}" --path "$tmp/bad_value.csv"
+
 if [ "$failures" != 0 ]; then
   echo "$failures CLI check(s) failed"
   exit 1

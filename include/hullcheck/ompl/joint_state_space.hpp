@@ -18,6 +18,9 @@ namespace hullcheck {
 /// RealVectorStateSpace; otherwise a CompoundStateSpace of a RealVectorStateSpace (bounded
 /// joints, in group order) followed by one SO2StateSpace per continuous joint.
 ///
+/// A default projection (for KPIECE and similar planners) on the group's first three joints in
+/// configuration order is registered. The object must outlive its space (the projection refers
+/// to it): keep it in a shared_ptr next to the space, as PlanningSetup does. Not copyable.
 /// Units: rad and m. Conversions are allocation-free and thread-safe (const).
 class JointStateSpace {
  public:
@@ -26,6 +29,9 @@ class JointStateSpace {
   /// repeated or out-of-range index.
   JointStateSpace(std::shared_ptr<const RobotModel> model, std::vector<int> variables,
                   const Eigen::VectorXd& fixed);
+
+  JointStateSpace(const JointStateSpace&) = delete;
+  JointStateSpace& operator=(const JointStateSpace&) = delete;
 
   const ::ompl::base::StateSpacePtr& space() const { return space_; }
   const RobotModel& model() const { return *model_; }
