@@ -32,10 +32,11 @@ std::vector<std::string> split_path_list(const char* value) {
   return out;
 }
 
-// A folder named `package` holding a package.xml, at most `depth` levels below `dir`.
+// A folder named `package` holding a package.xml, at most `depth` levels below `dir` (its
+// children are 1 level below).
 bool find_package_below(const fs::path& dir, const std::string& package, int depth,
                         fs::path* found) {
-  if (depth < 0) return false;
+  if (depth < 1) return false;
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     if (!it->is_directory(ec)) continue;

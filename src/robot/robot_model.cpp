@@ -53,6 +53,29 @@ void check_padding(const std::string& what, double padding) {
   }
 }
 
+// The distinct points, in the order of their first occurrence. Mesh files repeat a vertex for
+// every triangle using it (binary STL about 6 times), and qhull's time grows with its input,
+// duplicates included: removing them first halves the hull time of a large STL.
+std::vector<Eigen::Vector3d> distinct_points(const std::vector<Eigen::Vector3d>& points) {
+  std::vector<std::size_t> order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto key = [&](std::size_t i) {
+    return std::make_tuple(points[i].x(), points[i].y(), points[i].z(), i);
+  };
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+  std::vector<char> keep(points.size(), 0);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    keep[order[k]] = k == 0 || points[order[k]] != points[order[k - 1]];
+  }
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (keep[i]) out.push_back(points[i]);
+  }
+  return out;
+}
+
 struct MeshKey {
   std::string path;
   double sx, sy, sz;
@@ -112,7 +135,9 @@ class Loader {
           if (it == meshes_.end()) {
             const std::vector<Eigen::Vector3d> vertices =
                 read_mesh_vertices(path, Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z));
-            it = meshes_.emplace(key, MeshHull{ConvexHull(vertices), vertices.size()}).first;
+            it = meshes_
+                     .emplace(key, MeshHull{ConvexHull(distinct_points(vertices)), vertices.size()})
+                     .first;
           }
           out.unpadded = it->second.hull;
           out.mesh_vertex_count = it->second.vertex_count;
