@@ -224,8 +224,13 @@ void CollisionChecker::place(const std::vector<Eigen::Isometry3d>& link_poses, S
 double CollisionChecker::box_gap(const ObstacleBox& box, const Eigen::Vector3d& c,
                                  double radius) const {
   const Eigen::Vector3d local = box.rotation_t * (c - box.center);
-  const Eigen::Vector3d outside = (local.cwiseAbs() - box.half_extents).cwiseMax(0.0);
-  return outside.norm() - radius;
+  const Eigen::Vector3d excess = local.cwiseAbs() - box.half_extents;
+  const double outside = excess.cwiseMax(0.0).norm();
+  // A lower bound on the signed distance between anything in the ball and anything in the
+  // box. Centre outside: the gap minus the radius. Centre inside: minus the ball's penetration
+  // depth, the radius plus the centre's depth below the nearest face (-radius alone is no
+  // bound: a deeper pair would be culled and clearance would report a shallower one).
+  return (outside > 0.0 ? outside : excess.maxCoeff()) - radius;
 }
 
 bool CollisionChecker::is_valid(const Eigen::Ref<const Eigen::VectorXd>& q) const {
@@ -440,7 +445,31 @@ double CollisionChecker::motion_bound(const Eigen::Ref<const Eigen::VectorXd>& q
                                       const Eigen::Ref<const Eigen::VectorXd>& q1) const {
   model_->check_configuration(q0);
   model_->check_configuration(q1);
-  const double bound = (q1 - q0).cwiseAbs().dot(lever_);
+  double bound = (q1 - q0).cwiseAbs().dot(lever_);
+  // The lever arms assume prismatic joints within their limits, which configurations need not
+  // respect (RobotModel does not clamp; MBM's Panda start states hold the fingers beyond
+  // them). A prismatic value beyond its limits puts the shapes below it up to `beyond` further
+  // from every rotating joint above it.
+  for (const Joint& joint : model_->joints()) {
+    if (joint.type != JointType::kPrismatic) continue;
+    const bool mimic = joint.mimic_variable >= 0;
+    const int v = mimic ? joint.mimic_variable : joint.variable;
+    const double m = mimic ? std::abs(joint.mimic_multiplier) : 1.0;
+    const double o = mimic ? std::abs(joint.mimic_offset) : 0.0;
+    const double travel = m * std::max(std::abs(joint.lower), std::abs(joint.upper)) + o;
+    const double beyond = m * std::max(std::abs(q0[v]), std::abs(q1[v])) + o - travel;
+    if (!(beyond > 0.0)) continue;
+    for (int l = joint.parent_link; model_->link(l).parent_joint >= 0;) {
+      const Joint& above = model_->joint(model_->link(l).parent_joint);
+      if (above.type == JointType::kRevolute || above.type == JointType::kContinuous) {
+        const bool above_mimic = above.mimic_variable >= 0;
+        const int va = above_mimic ? above.mimic_variable : above.variable;
+        bound += beyond * (above_mimic ? std::abs(above.mimic_multiplier) : 1.0) *
+                 std::abs(q1[va] - q0[va]);
+      }
+      l = above.parent_link;
+    }
+  }
   return has_self_pairs_ ? 2.0 * bound : bound;
 }
 

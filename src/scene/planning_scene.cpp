@@ -143,7 +143,8 @@ class SceneReader {
     return link_poses_[static_cast<std::size_t>(link)];
   }
 
-  Shape primitive(const YAML::Node& p, const std::string& object) const {
+  // `type_name` receives the primitive's name ("box", ...; numeric types translated).
+  Shape primitive(const YAML::Node& p, const std::string& object, std::string* type_name) const {
     if (!p.IsMap() || !p["type"]) fail(object, "primitive without a type");
     std::string type;
     const std::string raw = p["type"].as<std::string>();
@@ -152,6 +153,7 @@ class SceneReader {
         {"1", "box"}, {"2", "sphere"}, {"3", "cylinder"}, {"4", "cone"}};
     type = kNumeric.count(raw) ? kNumeric.at(raw) : raw;
     for (char& ch : type) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    *type_name = type;
     const YAML::Node dims = p["dimensions"];
     if (!dims || !dims.IsSequence()) fail(object, type + " without a dimensions list");
     std::vector<double> d;
@@ -238,8 +240,8 @@ class SceneReader {
         if (is_mesh) {
           shapes.emplace_back(mesh(items[i], id), "mesh");
         } else {
-          Shape s = primitive(items[i], id);
-          std::string type = items[i]["type"].as<std::string>();
+          std::string type;
+          Shape s = primitive(items[i], id, &type);
           shapes.emplace_back(std::move(s), type);
         }
         poses.push_back(

@@ -1,0 +1,131 @@
+// Scenes and robots the scene tests load: MotionBenchMaker problems in ../shared (skipped
+// cleanly when absent), the own arm, and sample-count scaling for sanitizer builds.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <hullcheck/robot.hpp>
+#include <hullcheck/scene/planning_scene.hpp>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "robot_test_support.hpp"
+
+namespace hullcheck::test {
+
+/// Sample counts are divided by this under AddressSanitizer (tests run ~10x slower there).
+#if defined(__SANITIZE_ADDRESS__)
+constexpr int kSanitizerDivisor = 10;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr int kSanitizerDivisor = 10;
+#else
+constexpr int kSanitizerDivisor = 1;
+#endif
+#else
+constexpr int kSanitizerDivisor = 1;
+#endif
+
+/// `count` scaled for the build (at least 1); the environment variable `env`, when set, gives
+/// the count instead (for long offline runs).
+inline int sample_count(int count, const char* env = nullptr) {
+  if (env != nullptr) {
+    if (const char* value = std::getenv(env)) return std::max(1, std::atoi(value));
+  }
+  return std::max(1, count / kSanitizerDivisor);
+}
+
+/// A MotionBenchMaker robot: model files and its problem folders.
+struct MbmRobot {
+  std::string id;    // "panda" or "ur5"
+  std::string urdf;  // benchmarks/mbm/robots/...
+  std::string srdf;
+  std::string folder;                 // benchmarks/mbm/<id>
+  std::vector<std::string> families;  // e.g. "box_panda"
+};
+
+inline std::string mbm_dir() {
+  const std::string s = shared_dir();
+  return s.empty() ? std::string() : s + "/benchmarks/mbm";
+}
+
+/// The MBM robots whose model and problems are present (empty when ../shared is absent).
+inline std::vector<MbmRobot> mbm_robots() {
+  const std::string dir = mbm_dir();
+  std::vector<MbmRobot> out;
+  if (dir.empty()) return out;
+  const char* const kFamilies[] = {
+      "bookshelf_small", "bookshelf_tall",  "bookshelf_thin", "box", "cage",
+      "table_pick",      "table_under_pick"};
+  const std::vector<MbmRobot> all = {
+      {"panda",
+       dir + "/robots/panda_obj/panda.urdf",
+       dir + "/robots/panda_obj/panda.srdf",
+       dir + "/panda",
+       {}},
+      {"ur5",
+       dir + "/robots/ur5_robotiq85/ur5.urdf",
+       dir + "/robots/ur5_robotiq85/ur5.srdf",
+       dir + "/ur5",
+       {}},
+  };
+  for (MbmRobot r : all) {
+    if (!std::filesystem::exists(r.urdf) || !std::filesystem::exists(r.srdf)) continue;
+    for (const char* f : kFamilies) {
+      const std::string family = std::string(f) + "_" + r.id;
+      if (std::filesystem::is_directory(r.folder + "/" + family)) r.families.push_back(family);
+    }
+    if (!r.families.empty()) out.push_back(r);
+  }
+  return out;
+}
+
+/// "<folder>/<family>/sceneNNNN.yaml" (or request).
+inline std::string mbm_file(const MbmRobot& robot, const std::string& family, const char* kind,
+                            int number) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%s%04d.yaml", kind, number);
+  return robot.folder + "/" + family + "/" + name;
+}
+
+/// Models are loaded once per test binary (meshes take a moment).
+inline std::shared_ptr<const RobotModel> cached_model(const std::string& urdf) {
+  static std::vector<std::pair<std::string, std::shared_ptr<const RobotModel>>> cache;
+  for (const auto& [path, model] : cache) {
+    if (path == urdf) return model;
+  }
+  auto model = std::make_shared<const RobotModel>(RobotModel::from_urdf_file(urdf));
+  cache.emplace_back(urdf, model);
+  return model;
+}
+
+/// Uniform in the limits of `variables` (continuous joints in [-pi, pi]); the other values
+/// from `base`.
+inline Eigen::VectorXd random_configuration(const RobotModel& model, const Eigen::VectorXd& base,
+                                            const std::vector<int>& variables,
+                                            std::mt19937_64& rng) {
+  const Eigen::VectorXd lo = model.lower_limits();
+  const Eigen::VectorXd hi = model.upper_limits();
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Eigen::VectorXd q = base;
+  for (int i : variables) {
+    const double a = std::isfinite(lo[i]) ? lo[i] : -M_PI;
+    const double b = std::isfinite(hi[i]) ? hi[i] : M_PI;
+    q[i] = a + (b - a) * unit(rng);
+  }
+  return q;
+}
+
+/// Every configuration value's index.
+inline std::vector<int> all_variables(const RobotModel& model) {
+  std::vector<int> v(static_cast<std::size_t>(model.variable_count()));
+  for (int i = 0; i < model.variable_count(); ++i) v[static_cast<std::size_t>(i)] = i;
+  return v;
+}
+
+}  // namespace hullcheck::test
