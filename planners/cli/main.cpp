@@ -3,6 +3,7 @@
 #include <exception>
 #include <iostream>
 
+#include "benchmark_command.hpp"
 #include "exit_codes.hpp"
 #include "inspect_command.hpp"
 #include "plan_command.hpp"
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
   hullcheck::cli::add_srdf_command(app);
   hullcheck::cli::add_plan_command(app);
   hullcheck::cli::add_validate_command(app);
+  hullcheck::cli::add_benchmark_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

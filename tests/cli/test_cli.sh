@@ -115,6 +115,32 @@ printf 'joint1,joint2\n0,abc\n' >"$tmp/bad_value.csv"
 expect "validate: bad number in path" 1 "" "line 2: 'abc' is not a finite number" -- \
   "$bin" validate "${world[@]}" --path "$tmp/bad_value.csv"
 
+problems="$arm/problems"
+expect "benchmark writes an OMPL log" 0 "benchmark: 8 runs, 8 solved" "\\[2/2 problems\\]" -- \
+  "$bin" benchmark --robot "$urdf" --srdf "$srdf" --problems "$problems" \
+  --planners RRTConnect,PRM --runs 2 --time 5 --jobs 2 --log "$tmp/bench.log"
+expect "benchmark log header" 0 "^Experiment hullcheck_hullcheck_arm_2_problems$" "" -- \
+  head -2 "$tmp/bench.log"
+if command -v ompl_benchmark_statistics >/dev/null && command -v python3 >/dev/null; then
+  expect "ompl_benchmark_statistics reads the log" 0 "" "" -- \
+    ompl_benchmark_statistics "$tmp/bench.log" -d "$tmp/bench.db"
+  expect "database holds the planners and runs" 0 \
+    "^geometric_PRM 4 4,geometric_RRTConnect 4 4,$" "" -- \
+    python3 -c "import sqlite3, sys; c = sqlite3.connect(sys.argv[1]); print(''.join(
+      f'{n} {r} {s},' for n, r, s in c.execute('select p.name, count(*), sum(r.solved) from runs r '
+      'join plannerConfigs p on r.plannerid = p.id group by p.name order by p.name')))" "$tmp/bench.db"
+else
+  echo "FAIL ompl_benchmark_statistics or python3 missing (scripts/install-deps.sh installs ompl-demos)"
+  failures=$((failures + 1))
+fi
+expect "benchmark shard 1/2 runs one problem" 0 "benchmark: 1 runs" "" -- \
+  "$bin" benchmark --robot "$urdf" --srdf "$srdf" --problems "$problems" --shard 1/2 --time 5 \
+  --log "$tmp/shard.log"
+expect "benchmark: bad shard" 1 "" "--shard '2/2': expected i/n" -- \
+  "$bin" benchmark --robot "$urdf" --problems "$problems" --shard 2/2 --log "$tmp/x.log"
+expect "benchmark: no problems" 1 "" "no sceneNNNN.yaml/requestNNNN.yaml pairs found" -- \
+  "$bin" benchmark --robot "$urdf" --problems "$arm/meshes" --log "$tmp/x.log"
+
 if [ "$failures" != 0 ]; then
   echo "$failures CLI check(s) failed"
   exit 1
