@@ -2,11 +2,13 @@
 
 #include <ompl/util/Console.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
 
 #include "exit_codes.hpp"
+#include "html_viewer.hpp"
 #include "path_file.hpp"
 #include "planner_factory.hpp"
 #include "problem.hpp"
@@ -105,6 +107,17 @@ void run(const PlanSettings& s) {
     write_joint_path(s.out, out);
     std::printf("path written to %s\n", s.out.c_str());
   }
+  if (!s.viewer.empty()) {
+    ::ompl::geometric::PathGeometric dense(path);
+    dense.interpolate(static_cast<unsigned>(std::max<std::size_t>(120, 10 * path.getStateCount())));
+    std::vector<Eigen::VectorXd> frames;
+    for (std::size_t i = 0; i < dense.getStateCount(); ++i) {
+      frames.push_back(planning.configuration(dense.getState(i)));
+    }
+    write_html_viewer(s.viewer, "hullcheck plan: " + world.model->name(), *world.model,
+                      world.checker->scene(), frames);
+    std::printf("viewer written to %s\n", s.viewer.c_str());
+  }
 }
 
 }  // namespace
@@ -121,6 +134,8 @@ void add_plan_command(CLI::App& app) {
   command->add_option("--time", s->time, "Planning time limit, s (default 10)");
   command->add_flag("--simplify", s->simplify, "Simplify the path with the objective");
   command->add_option("--out", s->out, "Write the path: CSV, or JSON when PATH ends in .json");
+  command->add_option("--viewer", s->viewer,
+                      "Write a self-contained HTML page animating the path in 3D");
   command->add_flag("--discrete", s->discrete,
                     "Check motions at OMPL's discrete resolution instead of the guaranteed mode");
   command->add_flag("--verbose", s->verbose, "Show OMPL's informational messages");

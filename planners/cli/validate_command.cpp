@@ -7,6 +7,7 @@
 
 #include "clearance_plot.hpp"
 #include "exit_codes.hpp"
+#include "html_viewer.hpp"
 #include "path_file.hpp"
 #include "problem.hpp"
 
@@ -17,6 +18,7 @@ struct ValidateSettings {
   WorldOptions world;
   std::string path;
   std::string plot;
+  std::string viewer;
   int samples_per_motion = 20;
 };
 
@@ -53,6 +55,7 @@ void run(const ValidateSettings& s) {
   bool valid = true;
   std::printf("%4s  %-8s %12s  %s\n", "#", "state", "clearance", "closest pair");
   std::vector<ClearanceSample> profile;
+  std::vector<Eigen::VectorXd> frames;
   double position = 0.0;
   ::ompl::base::ScopedState<> from(si), to(si), mid(si);
   for (std::size_t i = 0; i < path.waypoints.size(); ++i) {
@@ -63,6 +66,7 @@ void run(const ValidateSettings& s) {
     std::printf("%4zu  %-8s %12.6f  %s - %s\n", i, ok ? "valid" : "INVALID", r.distance,
                 std::string(r.name_a).c_str(), std::string(r.name_b).c_str());
     profile.push_back({position, r.distance, true});
+    frames.push_back(q);
     if (i + 1 == path.waypoints.size()) break;
     planning.joints->from_configuration(q, from.get());
     planning.joints->from_configuration(full(path.waypoints[i + 1]), to.get());
@@ -77,6 +81,7 @@ void run(const ValidateSettings& s) {
       const double t = static_cast<double>(k) / s.samples_per_motion;
       si->getStateSpace()->interpolate(from.get(), to.get(), t, mid.get());
       profile.push_back({position + t * segment, planning.validity->clearance(mid.get()), false});
+      frames.push_back(planning.configuration(mid.get()));
     }
     position += segment;
   }
@@ -85,6 +90,11 @@ void run(const ValidateSettings& s) {
   if (!s.plot.empty()) {
     write_clearance_svg(s.plot, "clearance along " + s.path, profile);
     std::printf("clearance profile written to %s\n", s.plot.c_str());
+  }
+  if (!s.viewer.empty()) {
+    write_html_viewer(s.viewer, "hullcheck validate: " + s.path, model, world.checker->scene(),
+                      frames);
+    std::printf("viewer written to %s\n", s.viewer.c_str());
   }
   if (!valid) throw ExitWith{kExitInvalidProblem};
 }
@@ -101,6 +111,8 @@ void add_validate_command(CLI::App& app) {
   command->add_option("--path", s->path, "Path file (CSV with a joint-name header, or .json)")
       ->required();
   command->add_option("--plot", s->plot, "Write the clearance profile as an SVG plot");
+  command->add_option("--viewer", s->viewer,
+                      "Write a self-contained HTML page animating the path in 3D");
   command->footer("Exit status: 0 valid, 1 bad input, 2 the path is invalid.");
   command->callback([s] { run(*s); });
 }

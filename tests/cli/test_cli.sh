@@ -27,8 +27,8 @@ expect() {
     echo "ok   $name"
   else
     echo "FAIL $name (exit $got)"
-    sed 's/^/  stdout: /' "$tmp/out" | head -20
-    sed 's/^/  stderr: /' "$tmp/err" | head -20
+    cut -c1-300 "$tmp/out" | sed 's/^/  stdout: /' | head -20
+    cut -c1-300 "$tmp/err" | sed 's/^/  stderr: /' | head -20
     failures=$((failures + 1))
   fi
 }
@@ -89,6 +89,12 @@ expect "plan wrote a CSV path" 0 "^joint1,joint2,joint3,joint4,joint5,joint6,joi
 expect "validate accepts the planned path" 0 "path VALID" "" -- \
   "$bin" validate "${world[@]}" --path "$tmp/path.csv" --plot "$tmp/clearance.svg"
 expect "validate wrote an SVG plot" 0 "<svg" "" -- head -1 "$tmp/clearance.svg"
+expect "plan writes the HTML viewer" 0 "viewer written to" "" -- \
+  "$bin" plan "${world[@]}" --group arm --start left --goal right --viewer "$tmp/view.html"
+expect "viewer holds the data and three.js" 0 '"frames": \[\[\[' "" -- \
+  grep -o '"frames": \[\[\[' "$tmp/view.html"
+expect "viewer is self-contained (no remote scripts)" 1 "" "" -- \
+  grep -Eo '<(script|link)[^>]+(src|href)=' "$tmp/view.html"
 expect "plan writes JSON by extension" 0 "solved" "" -- \
   "$bin" plan "${world[@]}" --group arm --start left --goal right --planner kpiece1 --time 10 \
   --objective clearance --out "$tmp/path.json"

@@ -1,0 +1,22 @@
+// A self-contained HTML page showing the robot's collision shapes and the obstacles in 3D and
+// animating a path (three.js from Debian's libjs-three, inlined: no network needed).
+#pragma once
+
+#include <Eigen/Core>
+#include <hullcheck/robot/robot_model.hpp>
+#include <hullcheck/scene/planning_scene.hpp>
+#include <string>
+#include <vector>
+
+namespace hullcheck::cli {
+
+/// Writes `file`: the link shapes (convex hulls as their triangles, primitives exactly as
+/// three.js solids; padding not drawn) at every configuration of `configurations` (full
+/// vectors, played as an animation with a slider), the scene's obstacles, and `title`.
+/// Throws InputError when three.js is not installed (package libjs-three) or the file cannot
+/// be written.
+void write_html_viewer(const std::string& file, const std::string& title, const RobotModel& model,
+                       const PlanningScene& scene,
+                       const std::vector<Eigen::VectorXd>& configurations);
+
+}  // namespace hullcheck::cli
