@@ -75,6 +75,43 @@ void emit_shape(YAML::Emitter& e, const Shape& shape) {
   e << YAML::EndMap;
 }
 
+// Text for HTML element content.
+std::string html_escaped(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+// JSON made safe inside <script>: '<' occurs only in strings (names), where \u003c means the same.
+std::string script_safe(const char* json) {
+  std::string out;
+  for (const char* c = json; *c; ++c) {
+    if (*c == '<') {
+      out += "\\u003c";
+    } else {
+      out += *c;
+    }
+  }
+  return out;
+}
+
 const char* const kScript = R"JS(
 const data = JSON.parse(document.getElementById('data').textContent);
 const renderer = new THREE.WebGLRenderer({antialias: true});
@@ -83,18 +120,15 @@ document.body.appendChild(renderer.domElement);
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(0xf4f4f4);
 const camera = new THREE.PerspectiveCamera(45, 1, 0.01, 100);
-camera.up.set(0, 0, 1);
-camera.position.set(2.2, -2.2, 1.6);
+camera.up.set(0, 0, 1);  // z up, as in ROS
 const controls = new THREE.OrbitControls(camera, renderer.domElement);
-controls.target.set(0.3, 0, 0.5);
-controls.update();
-scene.add(new THREE.AmbientLight(0xffffff, 0.5));
+// A headlight (the directional light moves with the camera, so every view is lit) and ambient.
+scene.add(new THREE.AmbientLight(0xffffff, 0.45));
 const light = new THREE.DirectionalLight(0xffffff, 0.7);
-light.position.set(2, -3, 5);
-scene.add(light);
-const grid = new THREE.GridHelper(4, 40, 0xbbbbbb, 0xdddddd);
-grid.rotation.x = Math.PI / 2;
-scene.add(grid);
+light.position.set(0.5, 1, 0.2);  // camera frame: from above and a little to the right
+light.target.position.set(0, 0, -1);
+camera.add(light, light.target);
+scene.add(camera);
 function geometryOf(s) {
   if (s.type === 'box') return new THREE.BoxGeometry(s.size[0], s.size[1], s.size[2]);
   if (s.type === 'sphere') return new THREE.SphereGeometry(s.radius, 32, 16);
@@ -127,11 +161,14 @@ function place(object, m) {
   object.matrixAutoUpdate = false;
   object.matrix.fromArray(m);
 }
+const world = new THREE.Group();
 for (const o of data.obstacles) {
   const mesh = meshOf(o.shape, 0xc0504d, 0.55);
   place(mesh, o.pose);
-  scene.add(mesh);
+  world.add(mesh);
 }
+scene.add(world);
+const robot = new THREE.Group();
 const links = data.links.map((link, i) => {
   const group = new THREE.Group();
   group.matrixAutoUpdate = false;
@@ -140,33 +177,84 @@ const links = data.links.map((link, i) => {
     place(mesh, s.origin);
     group.add(mesh);
   }
-  scene.add(group);
+  robot.add(group);
   return group;
 });
+scene.add(robot);
+const frames = data.frames;
 const slider = document.getElementById('frame');
-slider.max = data.frames.length - 1;
+slider.max = Math.max(frames.length - 1, 0);
+slider.disabled = frames.length < 2;
 function show(k) {
-  const frame = data.frames[k];
-  links.forEach((g, i) => g.matrix.fromArray(frame[i]));
-  document.getElementById('label').textContent = 'state ' + (k + 1) + ' / ' + data.frames.length;
+  if (frames.length === 0) {
+    document.getElementById('label').textContent = 'no states';
+    return;
+  }
+  links.forEach((g, i) => g.matrix.fromArray(frames[k][i]));
+  document.getElementById('label').textContent = 'state ' + (k + 1) + ' / ' + frames.length;
 }
-let playing = true;
+// Camera and floor grid fitted to the bounding box of the obstacles and of the robot along the
+// whole path.
+const box = new THREE.Box3().setFromObject(world);
+const step = Math.max(1, Math.floor(frames.length / 30));
+for (let k = 0; k < frames.length; k += step) {
+  show(k);
+  box.expandByObject(robot);
+}
+if (frames.length > 0) {
+  show(frames.length - 1);
+  box.expandByObject(robot);
+}
+if (box.isEmpty()) box.set(new THREE.Vector3(-0.5, -0.5, 0), new THREE.Vector3(0.5, 0.5, 1));
+const center = box.getCenter(new THREE.Vector3());
+const extent = Math.max(Math.abs(box.min.x), Math.abs(box.max.x),
+                        Math.abs(box.min.y), Math.abs(box.max.y));
+const gridSize = Math.max(2, 2 * Math.ceil(extent + 0.25));
+const grid = new THREE.GridHelper(gridSize, gridSize <= 20 ? gridSize * 10 : gridSize,
+                                  0xbbbbbb, 0xdddddd);
+grid.rotation.x = Math.PI / 2;  // the z = 0 plane
+scene.add(grid);
+// Looking at the box's centre from the front right, above, just far enough to see all 8 corners.
+const viewDirection = new THREE.Vector3(1, -1, 0.7).normalize();
+function fitCamera() {
+  const tanV = Math.tan(camera.fov * Math.PI / 360), tanH = tanV * camera.aspect;
+  const right = new THREE.Vector3().crossVectors(camera.up, viewDirection).normalize();
+  const up = new THREE.Vector3().crossVectors(viewDirection, right);
+  let distance = 0.05;
+  for (let i = 0; i < 8; ++i) {
+    const c = new THREE.Vector3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y,
+                                i & 4 ? box.max.z : box.min.z).sub(center);
+    distance = Math.max(distance, c.dot(viewDirection) +
+                        Math.max(Math.abs(c.dot(right)) / tanH, Math.abs(c.dot(up)) / tanV));
+  }
+  distance *= 1.05;
+  const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 0.05);
+  controls.target.copy(center);
+  camera.position.copy(center).addScaledVector(viewDirection, distance);
+  camera.near = distance / 100;
+  camera.far = distance + 20 * radius;
+  camera.updateProjectionMatrix();
+  controls.update();
+}
+let playing = frames.length > 1;
 document.getElementById('play').onclick = () => { playing = !playing; };
 slider.oninput = () => { playing = false; show(+slider.value); };
+renderer.domElement.ondblclick = fitCamera;
 function resize() {
-  const w = window.innerWidth, h = window.innerHeight - 40;
+  const w = window.innerWidth, h = Math.max(window.innerHeight - 40, 1);
   renderer.setSize(w, h);
   camera.aspect = w / h;
   camera.updateProjectionMatrix();
 }
 window.addEventListener('resize', resize);
 resize();
+fitCamera();
 let k = 0, last = 0;
 function animate(t) {
   requestAnimationFrame(animate);
   if (playing && t - last > 40) {
     last = t;
-    k = (k + 1) % data.frames.length;
+    k = (k + 1) % frames.length;
     slider.value = k;
     show(k);
   }
@@ -230,15 +318,18 @@ void write_html_viewer(const std::string& file, const std::string& title, const 
   }
   e << YAML::EndSeq << YAML::EndMap;
 
+  const std::string heading = html_escaped(title);
   std::ofstream out(file);
   if (!out) throw InputError("viewer '" + file + "': cannot write");
-  out << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << title
-      << "</title>\n<style>body{margin:0;font-family:sans-serif}#bar{height:40px;display:flex;"
-         "align-items:center;gap:12px;padding:0 12px}#frame{flex:1}</style></head>\n<body>\n"
-         "<div id=\"bar\"><button id=\"play\">play / pause</button><input id=\"frame\" "
-         "type=\"range\" min=\"0\" value=\"0\"><span id=\"label\"></span><span>"
-      << title << "</span></div>\n<script id=\"data\" type=\"application/json\">" << e.c_str()
-      << "</script>\n<script>\n"
+  out << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << heading
+      << "</title>\n<style>body{margin:0;font-family:sans-serif}"
+         "#bar{height:40px;display:flex;align-items:center;gap:12px;padding:0 12px}"
+         "#frame{flex:1}canvas{display:block}</style></head>\n<body>\n<div id=\"bar\">"
+         "<button id=\"play\">play / pause</button>"
+         "<input id=\"frame\" type=\"range\" min=\"0\" value=\"0\"><span id=\"label\"></span>"
+         "<span title=\"drag: rotate, right-drag: pan, wheel: zoom, double-click: fit the view\">"
+      << heading << "</span></div>\n<script id=\"data\" type=\"application/json\">"
+      << script_safe(e.c_str()) << "</script>\n<script>\n"
       << three << "\n</script>\n<script>\n"
       << orbit << "\n</script>\n<script>" << kScript << "</script>\n</body></html>\n";
   if (!out) throw InputError("viewer '" + file + "': write failed");

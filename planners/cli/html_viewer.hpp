@@ -12,7 +12,9 @@ namespace hullcheck::cli {
 
 /// Writes `file`: the link shapes (convex hulls as their triangles, primitives exactly as
 /// three.js solids; padding not drawn) at every configuration of `configurations` (full
-/// vectors, played as an animation with a slider), the scene's obstacles, and `title`.
+/// vectors, played as an animation with a slider), the scene's obstacles, and `title` (HTML-
+/// escaped). z is up; the camera is fitted to the obstacles and the robot along the whole path
+/// (double-click refits), the light follows the camera.
 /// Throws InputError when three.js is not installed (package libjs-three) or the file cannot
 /// be written.
 void write_html_viewer(const std::string& file, const std::string& title, const RobotModel& model,
