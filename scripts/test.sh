@@ -3,7 +3,8 @@
 #  1. formatting check (clang-format) of the project's sources,
 #  2. Release build with warnings as errors: GoogleTest suites and benchmark smoke runs (ctest),
 #  3. the same tests built with AddressSanitizer + UndefinedBehaviorSanitizer,
-#  4. install into a temporary prefix and build a consumer with find_package(hullcheck).
+#  4. multi-threaded planning (OmplThreads.*) built with ThreadSanitizer,
+#  5. install into a temporary prefix and build a consumer with find_package(hullcheck).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -22,6 +23,18 @@ cmake -S . -B build/ci-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHULLCHECK_SA
 cmake --build build/ci-sanitize -j"$jobs" --target hullcheck_tests
 (cd build/ci-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --output-on-failure -j"$jobs")
+
+echo "== ThreadSanitizer build and multi-threaded planning tests"
+# OMPL's parallel planners (ParallelPlan of PRMs and RRTConnects) and plain threads sharing one
+# checker, validity checker and motion validator. libompl itself is not instrumented (its
+# internal accesses are invisible to TSan); no suppressions are needed.
+tsan_start=$SECONDS
+cmake -S . -B build/ci-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS=-fsanitize=thread \
+  -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread -DHULLCHECK_BUILD_BENCHMARKS=OFF >/dev/null
+cmake --build build/ci-tsan -j"$jobs" --target hullcheck_tests
+TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
+  build/ci-tsan/tests/hullcheck_tests --gtest_filter='OmplThreads.*'
+echo "ThreadSanitizer stage: $((SECONDS - tsan_start)) s"
 
 echo "== Install and find_package(hullcheck) from a consumer"
 prefix="$(mktemp -d)"

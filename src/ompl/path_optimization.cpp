@@ -18,7 +18,23 @@ bool simplify_with_objective(const ob::SpaceInformationPtr& si, og::PathGeometri
   og::PathSimplifier simplifier(si, goal, objective);
   const std::size_t before = path.getStateCount();
   const ob::Cost cost_before = path.cost(objective);
-  simplifier.simplify(path, max_time);
+  const og::PathGeometric original(path);
+  const ob::PlannerTerminationCondition ptc = ob::timedPlannerTerminationCondition(max_time);
+  // OMPL 1.5.2's simplify() also runs steps that ignore the objective (reduceVertices,
+  // collapseCloseVertices, B-spline smoothing, checkAndRepair): they shorten the path but may
+  // take it closer to obstacles. Keep its result only when the objective's cost did not grow;
+  // otherwise use only the objective-aware steps (shortcutPath, findBetterGoal).
+  simplifier.simplify(path, ptc);
+  if (objective->isCostBetterThan(cost_before, path.cost(objective))) {
+    path = original;
+    for (bool more = true; more;) {
+      more = simplifier.shortcutPath(path);
+      if (goal) more = simplifier.findBetterGoal(path, ptc) || more;
+      if (ptc) break;
+    }
+    // Shortcuts compare costs piecewise; a final guard keeps the contract exactly.
+    if (objective->isCostBetterThan(cost_before, path.cost(objective))) path = original;
+  }
   return path.getStateCount() != before ||
          objective->isCostBetterThan(path.cost(objective), cost_before);
 }
