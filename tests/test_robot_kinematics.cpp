@@ -472,7 +472,8 @@ TEST_P(RobotConfigOrder, DepthFirstFileOrderMimicsLimitsAndDefault) {
     }
     EXPECT_GE(start[i], lower[i]);
     EXPECT_LE(start[i], upper[i]);
-    EXPECT_EQ(start[i], std::min(std::max(0.0, lower[i]), upper[i]));  // 0 clamped into limits
+    // MoveIt's default: 0 when within the limits, else the middle of the range.
+    EXPECT_EQ(start[i], lower[i] <= 0.0 && 0.0 <= upper[i] ? 0.0 : 0.5 * (lower[i] + upper[i]));
   }
   for (const UrdfJoint& j : urdf.joints) {
     SCOPED_TRACE(j.name);
@@ -535,7 +536,7 @@ TEST(RobotConfigOrder, OwnArm) {
 }
 
 // Children in file order, not in name order (urdfdom keeps joints in a name-sorted map) and not
-// in the order links are declared; ranges that exclude 0 clamp the default.
+// in the order links are declared; ranges that exclude 0 default to their middle (MoveIt).
 TEST(RobotConfigOrder, ChildrenInFileOrderAndDefaultClamped) {
   const std::string xml = R"(<robot name="order">
     <link name="z_root"/><link name="m"/><link name="b"/><link name="a"/><link name="c"/>
@@ -553,7 +554,7 @@ TEST(RobotConfigOrder, ChildrenInFileOrderAndDefaultClamped) {
   const std::vector<std::string> expected = {"j_zeta", "j_mid", "j_alpha", "j_beta"};
   EXPECT_EQ(model.variable_names(), expected);
   EXPECT_EQ(parse_urdf_tree(xml).depth_first_active(), expected);
-  EXPECT_EQ(model.default_configuration(), Eigen::Vector4d(0.5, 0.0, -0.1, 0.0));
+  EXPECT_EQ(model.default_configuration(), Eigen::Vector4d(1.0, 0.0, -0.2, 0.0));
   EXPECT_EQ(model.link(0).name, "z_root");
   EXPECT_EQ(model.link(0).parent_joint, -1);
   // Links: the root first, every parent before its children.

@@ -203,7 +203,7 @@ TEST(Srdf, OwnArm) {
   EXPECT_EQ(both->subgroups, (std::vector<std::string>{"arm", "gripper"}));
   EXPECT_EQ(srdf.group("no_such_group"), nullptr);
 
-  ASSERT_EQ(srdf.group_states.size(), 5u);
+  ASSERT_EQ(srdf.group_states.size(), 7u);  // home ready stow left right (arm), open closed
   const SrdfGroupState* ready = srdf.group_state("arm", "ready");
   ASSERT_NE(ready, nullptr);
   const std::vector<std::pair<std::string, double>> ready_values = {
@@ -220,6 +220,15 @@ TEST(Srdf, OwnArm) {
   EXPECT_EQ(srdf.group_state("arm", "open"), nullptr);  // the group matters
   EXPECT_NE(srdf.group_state("gripper", "closed"), nullptr);
   EXPECT_NE(srdf.group_state("arm", "home"), nullptr);
+  const SrdfGroupState* left = srdf.group_state("arm", "left");
+  const SrdfGroupState* right = srdf.group_state("arm", "right");
+  ASSERT_TRUE(left != nullptr && right != nullptr);
+  // The demo's two sides of the wall: mirror images through joint1 only.
+  EXPECT_EQ(left->joint_values[0], std::make_pair(std::string("joint1"), 0.5));
+  EXPECT_EQ(right->joint_values[0], std::make_pair(std::string("joint1"), -0.5));
+  for (std::size_t i = 1; i < left->joint_values.size(); ++i) {
+    EXPECT_EQ(left->joint_values[i], right->joint_values[i]);
+  }
 
   ASSERT_EQ(srdf.end_effectors.size(), 1u);
   EXPECT_EQ(srdf.end_effectors[0].name, "hand");

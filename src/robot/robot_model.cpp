@@ -386,7 +386,8 @@ Eigen::VectorXd RobotModel::default_configuration() const {
   Eigen::VectorXd out(variable_count());
   for (int i = 0; i < variable_count(); ++i) {
     const Joint& j = joint(variable_joint(i));
-    out[i] = std::min(std::max(0.0, j.lower), j.upper);
+    // MoveIt's default: 0 when within the limits, else the middle of the range.
+    out[i] = (j.lower <= 0.0 && 0.0 <= j.upper) ? 0.0 : 0.5 * (j.lower + j.upper);
   }
   return out;
 }

@@ -121,7 +121,8 @@ class RobotModel {
   /// Per-variable bounds (lower/upper, -inf/inf for continuous joints).
   Eigen::VectorXd lower_limits() const;
   Eigen::VectorXd upper_limits() const;
-  /// A default configuration: 0 clamped into each joint's limits (MoveIt's convention).
+  /// A default configuration, MoveIt's convention: each value 0 when 0 is within the joint's
+  /// limits, else the middle of its range.
   Eigen::VectorXd default_configuration() const;
 
   /// Throws InputError unless q has variable_count() finite values (the message names the

@@ -50,7 +50,7 @@ PlanningScene parse_planning_scene(const std::string& yaml, const RobotModel& mo
                                    const std::string& source_name = "<scene string>");
 
 /// A URDF as a static environment: every collision shape of every link, posed by forward
-/// kinematics at the URDF's default configuration (each joint at 0 clamped into its limits),
+/// kinematics at the URDF's default configuration (RobotModel::default_configuration),
 /// then placed by `environment_pose` (model frame <- environment root frame). Obstacle names
 /// are "link" or "link/i" for a link's i-th shape; `object` is the link name.
 PlanningScene planning_scene_from_urdf(const std::string& path,
