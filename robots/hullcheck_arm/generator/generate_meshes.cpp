@@ -35,7 +35,9 @@ struct V3 {
 V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 V3 operator*(double s, V3 a) { return {s * a.x, s * a.y, s * a.z}; }
 double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+V3 cross(V3 a, V3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
 double norm(V3 a) { return std::sqrt(dot(a, a)); }
 
 using Tri = std::array<std::uint32_t, 3>;
@@ -142,7 +144,8 @@ Mesh revolve(const Profile& prof, int segments) {
       m.f.push_back({ring(r, s), ring(r, s + 1), ring(r + 1, s + 1)});
       m.f.push_back({ring(r, s), ring(r + 1, s + 1), ring(r + 1, s)});
     }
-  for (int s = 0; s < segments; ++s) m.f.push_back({top, ring(rings - 1, s), ring(rings - 1, s + 1)});
+  for (int s = 0; s < segments; ++s)
+    m.f.push_back({top, ring(rings - 1, s), ring(rings - 1, s + 1)});
   if (m.signed_volume() < 0) m.flip();
   return m;
 }
@@ -187,9 +190,8 @@ std::vector<double> box_axis(double h, double r, int arc, int flat) {
 // Box with half extents h, centred at the origin, edges and corners rounded with radius r
 // (the Minkowski sum of a box and a ball), meshed as a welded cube grid.
 Mesh rounded_box(V3 h, double r, int arc, int flat) {
-  const std::array<std::vector<double>, 3> ax = {box_axis(h.x, r, arc, flat),
-                                                 box_axis(h.y, r, arc, flat),
-                                                 box_axis(h.z, r, arc, flat)};
+  const std::array<std::vector<double>, 3> ax = {
+      box_axis(h.x, r, arc, flat), box_axis(h.y, r, arc, flat), box_axis(h.z, r, arc, flat)};
   const std::array<double, 3> inner = {h.x - r, h.y - r, h.z - r};
   Mesh m;
   m.shells = 1;
@@ -246,7 +248,8 @@ void check_closed(const Mesh& m, const std::string& name) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
   for (const Tri& t : m.f) {
     for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      const std::uint32_t a = t[static_cast<std::size_t>(k)],
+                          b = t[static_cast<std::size_t>((k + 1) % 3)];
       if (a == b) throw std::runtime_error(name + ": degenerate triangle");
       ++edges[{a, b}];
     }
@@ -334,7 +337,8 @@ std::string obj(const Mesh& m, const std::string& name, const std::string& comme
   std::ostringstream s;
   s << "# " << comment << "\n# " << m.v.size() << " vertices, " << m.f.size() << " triangles\n"
     << "o " << name << "\n";
-  for (const V3& p : m.v) s << "v " << fixed6(p.x) << ' ' << fixed6(p.y) << ' ' << fixed6(p.z) << "\n";
+  for (const V3& p : m.v)
+    s << "v " << fixed6(p.x) << ' ' << fixed6(p.y) << ' ' << fixed6(p.z) << "\n";
   for (const Tri& t : m.f) s << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << "\n";
   return s.str();
 }
@@ -347,9 +351,15 @@ void write(const std::string& dir, const std::string& file, Format format, const
   check_closed(m, file);
   std::string data;
   switch (format) {
-    case Format::kBinaryStl: data = binary_stl(m, "hullcheck_arm " + what + " (binary STL)"); break;
-    case Format::kAsciiStl: data = ascii_stl(m, "hullcheck_arm_" + file.substr(0, file.find('.'))); break;
-    case Format::kObj: data = obj(m, file.substr(0, file.find('.')), "hullcheck_arm " + what); break;
+    case Format::kBinaryStl:
+      data = binary_stl(m, "hullcheck_arm " + what + " (binary STL)");
+      break;
+    case Format::kAsciiStl:
+      data = ascii_stl(m, "hullcheck_arm_" + file.substr(0, file.find('.')));
+      break;
+    case Format::kObj:
+      data = obj(m, file.substr(0, file.find('.')), "hullcheck_arm " + what);
+      break;
   }
   const std::string path = dir + "/" + file;
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
@@ -405,13 +415,15 @@ Mesh link5_fork() {
     p.line(0, 0.09, 3);
     m.append(revolve(p, 40));
   }
-  m.append(transformed(rounded_box({0.045, 0.065, 0.015}, 0.006, 2, 3), translation({0, 0, 0.095})));
+  m.append(
+      transformed(rounded_box({0.045, 0.065, 0.015}, 0.006, 2, 3), translation({0, 0, 0.095})));
   for (double side : {1.0, -1.0}) {
     m.append(transformed(rounded_box({0.045, 0.010, 0.055}, 0.004, 2, 3),
                          translation({0, side * 0.055, 0.135})));
     // Round boss about the joint 6 axis (y): a disc about z rotated onto y.
     const double y0 = side > 0 ? 0.045 : -0.065;
-    m.append(transformed(filleted_disc(0.045, y0, y0 + 0.020, 0.003, 32), rot_x(-kPi / 2, {0, 0, 0.19})));
+    m.append(transformed(filleted_disc(0.045, y0, y0 + 0.020, 0.003, 32),
+                         rot_x(-kPi / 2, {0, 0, 0.19})));
   }
   for (V3& q : m.v) q = 1000.0 * q;  // millimetres
   return m;
@@ -425,7 +437,8 @@ Mesh gripper_housing() {
 // Finger: rounded block x +-0.011, y 0 .. 0.016 (y = 0 is the gripping face), z 0 .. 0.052,
 // tapering towards the tip (narrower in x, thinner in y) with the gripping face kept in place.
 Mesh finger() {
-  Mesh m = transformed(rounded_box({0.011, 0.008, 0.026}, 0.002, 3, 4), translation({0, 0.008, 0.026}));
+  Mesh m =
+      transformed(rounded_box({0.011, 0.008, 0.026}, 0.002, 3, 4), translation({0, 0.008, 0.026}));
   for (V3& q : m.v) {
     const double s = q.z / 0.052;
     q.x *= 1.0 - 0.25 * s;
@@ -449,7 +462,8 @@ int main(int argc, char** argv) {
     write(dir, "link3.STL", Format::kAsciiStl, link3(), "link3, metres");
     write(dir, "link4.stl", Format::kBinaryStl, link4(), "link4, metres");
     write(dir, "link5_mm.stl", Format::kBinaryStl, link5_fork(), "link5 fork, MILLIMETRES");
-    write(dir, "gripper_housing.stl", Format::kBinaryStl, gripper_housing(), "gripper housing, metres");
+    write(dir, "gripper_housing.stl", Format::kBinaryStl, gripper_housing(),
+          "gripper housing, metres");
     write(dir, "finger.stl", Format::kBinaryStl, finger(), "finger, metres");
   } catch (const std::exception& e) {
     std::cerr << "generate_meshes: " << e.what() << "\n";
