@@ -1,0 +1,23 @@
+# Runs the own arm's mesh generator into OUT and compares every file with MESHES.
+# cmake -DGENERATOR=... -DMESHES=... -DOUT=... -P compare_generated_meshes.cmake
+file(REMOVE_RECURSE ${OUT})
+file(MAKE_DIRECTORY ${OUT})
+execute_process(COMMAND ${GENERATOR} ${OUT} RESULT_VARIABLE result OUTPUT_QUIET)
+if(NOT result EQUAL 0)
+  message(FATAL_ERROR "mesh generator failed: ${result}")
+endif()
+file(GLOB generated RELATIVE ${OUT} ${OUT}/*)
+file(GLOB committed RELATIVE ${MESHES} ${MESHES}/*.*)
+list(SORT generated)
+list(SORT committed)
+if(NOT generated STREQUAL committed)
+  message(FATAL_ERROR "generated files (${generated}) differ from committed (${committed})")
+endif()
+foreach(f ${generated})
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${OUT}/${f} ${MESHES}/${f}
+                  RESULT_VARIABLE different)
+  if(different)
+    message(FATAL_ERROR "${f}: regenerated file differs from robots/hullcheck_arm/meshes/${f}")
+  endif()
+endforeach()
+message(STATUS "all ${generated} regenerate byte-identical")
