@@ -25,9 +25,14 @@ struct MinkowskiDifference {
   /// Support point w = pa - pb of A - B in direction d (A's frame), with its parts.
   void support(const Eigen::Vector3d& d, Eigen::Vector3d& w, Eigen::Vector3d& pa,
                Eigen::Vector3d& pb) {
+    // Written out by columns: Eigen's products with a transpose or a negated operand are
+    // out-of-line calls in GCC.
     pa = a.support(d, index_a);
-    pb.noalias() = rotation * b.support(rotation.transpose() * (-d), index_b);
-    pb += translation;
+    const Eigen::Vector3d d_b(-rotation.col(0).dot(d), -rotation.col(1).dot(d),
+                              -rotation.col(2).dot(d));
+    const Eigen::Vector3d sb = b.support(d_b, index_b);
+    pb = rotation.col(0) * sb.x() + rotation.col(1) * sb.y() + rotation.col(2) * sb.z() +
+         translation;
     w = pa - pb;
   }
   void support(const Eigen::Vector3d& d, SimplexVertex& out) { support(d, out.w, out.a, out.b); }
