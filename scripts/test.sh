@@ -31,9 +31,9 @@ echo "== ThreadSanitizer build and multi-threaded planning tests"
 tsan_start=$SECONDS
 cmake -S . -B build/ci-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS=-fsanitize=thread \
   -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread -DHULLCHECK_BUILD_BENCHMARKS=OFF >/dev/null
-cmake --build build/ci-tsan -j"$jobs" --target hullcheck_tests
+cmake --build build/ci-tsan -j"$jobs" --target hullcheck_thread_tests
 TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
-  build/ci-tsan/tests/hullcheck_tests --gtest_filter='OmplThreads.*'
+  build/ci-tsan/tests/hullcheck_thread_tests --gtest_filter='OmplThreads.*'
 echo "ThreadSanitizer stage: $((SECONDS - tsan_start)) s"
 
 echo "== Install and find_package(hullcheck) from a consumer"

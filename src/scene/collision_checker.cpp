@@ -42,6 +42,8 @@ struct CollisionChecker::Scratch {
   std::vector<Eigen::Vector3d> centers;
   std::vector<double> lower_bounds;
   std::vector<double> motions;
+  Eigen::VectorXd abs_dq;
+  Eigen::VectorXd q_end;
 };
 
 CollisionChecker::Scratch& CollisionChecker::scratch() const {
@@ -377,7 +379,18 @@ double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q
   const std::size_t n_env = environment_pairs_.size();
   const std::size_t n_all = n_env + self_pairs_.size();
   if (s.motions.size() < n_all) s.motions.resize(n_all);
-  const Eigen::VectorXd abs_dq = dq.cwiseAbs();
+  if (s.abs_dq.size() != dq.size()) {  // per-thread scratch: allocates on first use only
+    s.abs_dq.resize(dq.size());
+    s.q_end.resize(dq.size());
+  }
+  Eigen::VectorXd& abs_dq = s.abs_dq;
+  abs_dq = dq.cwiseAbs();
+  s.q_end = q + dq;
+  // Lever arms assume prismatic joints within their limits; beyond them (RobotModel does not
+  // clamp), shapes below sit further from the rotating joints above. Over t in [0, 1] a
+  // prismatic value stays within max(|q|, |q + dq|): add that excess times the rotation of
+  // every joint above, to every pair (conservative), and certify no further than t = 1.
+  const double extra = prismatic_excess_motion(q, s.q_end);
   // Per pair: gap lower bound (bounding volumes) and motion per unit s.
   double best = std::numeric_limits<double>::infinity();
   std::size_t first = n_all;
@@ -388,14 +401,15 @@ double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q
       lb = box_gap(boxes_[static_cast<std::size_t>(p.obstacle)],
                    s.centers[static_cast<std::size_t>(p.shape)],
                    shapes_[static_cast<std::size_t>(p.shape)].radius);
-      motion = shape_levers_.row(p.shape).dot(abs_dq);
+      motion = shape_levers_.row(p.shape).dot(abs_dq) + extra;
     } else {
       const SelfPair& p = self_pairs_[i - n_env];
       lb = (s.centers[static_cast<std::size_t>(p.a)] - s.centers[static_cast<std::size_t>(p.b)])
                .norm() -
            shapes_[static_cast<std::size_t>(p.a)].radius -
            shapes_[static_cast<std::size_t>(p.b)].radius;
-      motion = self_pair_levers_.row(static_cast<Eigen::Index>(i - n_env)).dot(abs_dq);
+      motion =
+          self_pair_levers_.row(static_cast<Eigen::Index>(i - n_env)).dot(abs_dq) + 2.0 * extra;
     }
     s.lower_bounds[i] = lb;
     s.motions[i] = motion;
@@ -405,7 +419,7 @@ double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q
       first = i;
     }
   }
-  if (n_all == 0) return std::numeric_limits<double>::infinity();
+  if (n_all == 0) return 1.0;
   // Exact distance of pair i; false when it is within min_clearance.
   const auto exact = [&](std::size_t i, double* d) {
     if (i < n_env) {
@@ -438,18 +452,17 @@ double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q
     if (!exact(i, &d)) return -1.0;
     step = std::min(step, d / s.motions[i]);
   }
-  return step;
+  return std::min(step, 1.0);
 }
 
-double CollisionChecker::motion_bound(const Eigen::Ref<const Eigen::VectorXd>& q0,
-                                      const Eigen::Ref<const Eigen::VectorXd>& q1) const {
-  model_->check_configuration(q0);
-  model_->check_configuration(q1);
-  double bound = (q1 - q0).cwiseAbs().dot(lever_);
+double CollisionChecker::prismatic_excess_motion(
+    const Eigen::Ref<const Eigen::VectorXd>& q0,
+    const Eigen::Ref<const Eigen::VectorXd>& q1) const {
   // The lever arms assume prismatic joints within their limits, which configurations need not
   // respect (RobotModel does not clamp; MBM's Panda start states hold the fingers beyond
   // them). A prismatic value beyond its limits puts the shapes below it up to `beyond` further
   // from every rotating joint above it.
+  double extra = 0.0;
   for (const Joint& joint : model_->joints()) {
     if (joint.type != JointType::kPrismatic) continue;
     const bool mimic = joint.mimic_variable >= 0;
@@ -464,12 +477,21 @@ double CollisionChecker::motion_bound(const Eigen::Ref<const Eigen::VectorXd>& q
       if (above.type == JointType::kRevolute || above.type == JointType::kContinuous) {
         const bool above_mimic = above.mimic_variable >= 0;
         const int va = above_mimic ? above.mimic_variable : above.variable;
-        bound += beyond * (above_mimic ? std::abs(above.mimic_multiplier) : 1.0) *
+        extra += beyond * (above_mimic ? std::abs(above.mimic_multiplier) : 1.0) *
                  std::abs(q1[va] - q0[va]);
       }
       l = above.parent_link;
     }
   }
+  return extra;
+}
+
+double CollisionChecker::motion_bound(const Eigen::Ref<const Eigen::VectorXd>& q0,
+                                      const Eigen::Ref<const Eigen::VectorXd>& q1) const {
+  model_->check_configuration(q0);
+  model_->check_configuration(q1);
+  // prismatic_excess_motion: shapes below a prismatic joint beyond its limits.
+  const double bound = (q1 - q0).cwiseAbs().dot(lever_) + prismatic_excess_motion(q0, q1);
   return has_self_pairs_ ? 2.0 * bound : bound;
 }
 

@@ -44,8 +44,9 @@ struct ClearanceResult {
 /// thread's first call and reused, so queries do not allocate after that.
 class CollisionChecker {
  public:
-  /// Throws InputError when the matrix is not sized for the model, or when the scene's allowed
-  /// pairs name something that is neither a link nor an object (message names it).
+  /// Throws InputError when the matrix is not sized for the model. The scene's allowed pairs
+  /// (link/link, link/object) are applied; entries naming neither a link nor an object of this
+  /// scene change nothing (MoveIt keeps such names in its matrices too).
   CollisionChecker(std::shared_ptr<const RobotModel> model, AllowedCollisionMatrix matrix,
                    PlanningScene scene);
 
@@ -72,13 +73,14 @@ class CollisionChecker {
                       const Eigen::Ref<const Eigen::VectorXd>& q1) const;
 
   /// One step of conservative advancement along the straight joint-space motion q + s*dq:
-  /// the largest s >= 0 this call can certify, i.e. every configuration q + t*dq with
-  /// 0 <= t <= s is collision-free, or -1 when some checked pair at q is within
-  /// `min_clearance` (m) of touching (or overlapping). Per pair: s_p = distance_p / motion_p
+  /// the largest s in [0, 1] this call can certify, i.e. every configuration q + t*dq with
+  /// 0 <= t <= s is collision-free (1: the whole motion), or -1 when some checked pair at q is
+  /// within `min_clearance` (m) of touching (or overlapping). Per pair: s_p = distance_p / motion_p
   /// with motion_p a bound on how far the pair's shapes move relative to each other per unit s
   /// (joints above both links of a self pair move them together and do not count). Exact
-  /// distances are computed only for pairs whose bounding-volume gap could limit s. Returns
-  /// +inf when nothing moves. Thread-safe, no allocation.
+  /// distances are computed only for pairs whose bounding-volume gap could limit s. Prismatic
+  /// values beyond their limits (not clamped) add to the motion bounds. Thread-safe; the
+  /// per-thread scratch grows on first use only.
   double safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q,
                       const Eigen::Ref<const Eigen::VectorXd>& dq, double min_clearance) const;
 
@@ -106,6 +108,10 @@ class CollisionChecker {
   Scratch& scratch() const;
   void place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const;
   double box_gap(const ObstacleBox& box, const Eigen::Vector3d& c, double radius) const;
+  /// Extra motion bound (m) over the straight motion q0 -> q1 from prismatic values beyond the
+  /// limits the lever arms assume.
+  double prismatic_excess_motion(const Eigen::Ref<const Eigen::VectorXd>& q0,
+                                 const Eigen::Ref<const Eigen::VectorXd>& q1) const;
 
   std::shared_ptr<const RobotModel> model_;
   AllowedCollisionMatrix matrix_;
