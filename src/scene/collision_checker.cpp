@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <hullcheck/errors.hpp>
 #include <hullcheck/queries.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
@@ -34,6 +35,25 @@ void local_box(const Shape& shape, Eigen::Vector3d* center, Eigen::Vector3d* hal
   half->array() += shape.margin();
 }
 
+// Robot shapes per group of the obstacle broad phase: a group's bounding ball is tested
+// against an obstacle first, its shapes only when it is not clear (consecutive shapes follow
+// the kinematic chain, so a group is a few neighbouring links).
+constexpr int kGroupSize = 4;
+
+// Bounds on the signed distance of A and B from their supporting planes normal to the unit
+// vector n (from A towards B): every point of A is at most n.a_max along n, every point of
+// B at least n.b_min, so distance >= n.(b_min - a_max) (and depth <= -that when overlapping:
+// the difference A - B reaches no further than that along -n). The two support points are
+// points of the shapes, so their distance bounds the signed distance from above.
+void slab_bounds(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+                 const Eigen::Isometry3d& pose_b, const Eigen::Vector3d& n, double* lower,
+                 double* upper) {
+  const Eigen::Vector3d a_max = pose_a * a.support(pose_a.linear().transpose() * n);
+  const Eigen::Vector3d b_min = pose_b * b.support(-(pose_b.linear().transpose() * n));
+  *lower = n.dot(b_min - a_max);
+  *upper = (b_min - a_max).norm();
+}
+
 }  // namespace
 
 struct CollisionChecker::Scratch {
@@ -44,6 +64,16 @@ struct CollisionChecker::Scratch {
   std::vector<double> motions;
   Eigen::VectorXd abs_dq;
   Eigen::VectorXd q_end;
+  // Shape poses are computed when a pair needs them: posed[i] == stamp when shape_poses[i]
+  // belongs to the current query (stamp grows with every place(), so no stale pose is used,
+  // whichever checker ran before on this thread).
+  std::vector<std::uint64_t> posed;
+  std::uint64_t stamp = 0;
+  const std::vector<Eigen::Isometry3d>* link_poses_in = nullptr;  // of the current query
+  std::vector<Eigen::Vector3d> group_centers;
+  std::vector<double> group_radii;
+  std::vector<std::pair<double, int>> candidates;  // clearance: (lower bound, pair)
+  std::vector<std::pair<double, int>> nearest;     // clearance: (ball bound, pair)
 };
 
 CollisionChecker::Scratch& CollisionChecker::scratch() const {
@@ -55,9 +85,18 @@ CollisionChecker::Scratch& CollisionChecker::scratch() const {
   if (s.shape_poses.size() < shapes_.size()) {
     s.shape_poses.resize(shapes_.size());
     s.centers.resize(shapes_.size());
+    s.posed.resize(shapes_.size(), 0);
+  }
+  if (s.group_centers.size() < groups_.size()) {
+    s.group_centers.resize(groups_.size());
+    s.group_radii.resize(groups_.size());
   }
   const std::size_t pairs = self_pairs_.size() + environment_pairs_.size();
-  if (s.lower_bounds.size() < pairs) s.lower_bounds.resize(pairs);
+  if (s.lower_bounds.size() < pairs) {
+    s.lower_bounds.resize(pairs);
+    s.candidates.reserve(pairs);
+    s.nearest.reserve(pairs);
+  }
   return s;
 }
 
@@ -104,7 +143,8 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
     const Link& link = model_->link(l);
     for (int s = 0; s < static_cast<int>(link.shapes.size()); ++s) {
       const CollisionShape& cs = link.shapes[static_cast<std::size_t>(s)];
-      shapes_.push_back({l, s, cs.origin * cs.bounding_center, cs.bounding_radius, link.name});
+      shapes_.push_back({l, s, cs.origin * cs.bounding_center, cs.bounding_radius, link.name,
+                         cs.origin.matrix() == Eigen::Matrix4d::Identity()});
     }
   }
   first_shape[static_cast<std::size_t>(n)] = static_cast<int>(shapes_.size());
@@ -126,12 +166,22 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
     local_box(o.shape, &center, &half);
     boxes_.push_back({o.pose.linear().transpose(), o.pose * center, half});
   }
-  for (int s = 0; s < static_cast<int>(shapes_.size()); ++s) {
-    const auto link = static_cast<std::size_t>(shapes_[static_cast<std::size_t>(s)].link);
+  const int shape_count = static_cast<int>(shapes_.size());
+  for (int begin = 0; begin < shape_count; begin += kGroupSize) {
+    groups_.push_back({begin, std::min(begin + kGroupSize, shape_count)});
+  }
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     for (int o = 0; o < static_cast<int>(scene_.obstacles.size()); ++o) {
-      if (!link_object_allowed[link][static_cast<std::size_t>(o)]) {
-        environment_pairs_.push_back({s, o});
+      const int begin = static_cast<int>(environment_pairs_.size());
+      for (int s = groups_[static_cast<std::size_t>(g)].begin;
+           s < groups_[static_cast<std::size_t>(g)].end; ++s) {
+        const auto link = static_cast<std::size_t>(shapes_[static_cast<std::size_t>(s)].link);
+        if (!link_object_allowed[link][static_cast<std::size_t>(o)]) {
+          environment_pairs_.push_back({s, o});
+        }
       }
+      const int end = static_cast<int>(environment_pairs_.size());
+      if (end > begin) blocks_.push_back({g, o, begin, end});
     }
   }
 
@@ -214,20 +264,60 @@ void CollisionChecker::place(const std::vector<Eigen::Isometry3d>& link_poses, S
                      " link poses, robot '" + model_->name() + "' has " +
                      std::to_string(model_->links().size()) + " links");
   }
+  s.link_poses_in = &link_poses;
+  ++s.stamp;
   for (std::size_t i = 0; i < shapes_.size(); ++i) {
     const RobotShape& rs = shapes_[i];
-    const Eigen::Isometry3d& link_pose = link_poses[static_cast<std::size_t>(rs.link)];
-    s.shape_poses[i] =
-        link_pose * model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].origin;
-    s.centers[i] = link_pose * rs.center;
+    s.centers[i] = link_poses[static_cast<std::size_t>(rs.link)] * rs.center;
+  }
+  // Group balls: around the mean of the members' centres, enclosing every member's ball.
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    const ShapeGroup& group = groups_[g];
+    Eigen::Vector3d center = Eigen::Vector3d::Zero();
+    for (int i = group.begin; i < group.end; ++i) center += s.centers[static_cast<std::size_t>(i)];
+    center /= static_cast<double>(group.end - group.begin);
+    double radius = 0.0;
+    for (int i = group.begin; i < group.end; ++i) {
+      radius = std::max(radius, (s.centers[static_cast<std::size_t>(i)] - center).norm() +
+                                    shapes_[static_cast<std::size_t>(i)].radius);
+    }
+    s.group_centers[g] = center;
+    s.group_radii[g] = radius;
   }
 }
 
-double CollisionChecker::box_gap(const ObstacleBox& box, const Eigen::Vector3d& c,
-                                 double radius) const {
+const Eigen::Isometry3d& CollisionChecker::shape_pose(int shape, Scratch& s) const {
+  const auto i = static_cast<std::size_t>(shape);
+  const RobotShape& rs = shapes_[i];
+  const Eigen::Isometry3d& link_pose = (*s.link_poses_in)[static_cast<std::size_t>(rs.link)];
+  if (rs.at_link_frame) return link_pose;
+  if (s.posed[i] != s.stamp) {
+    s.shape_poses[i] =
+        link_pose * model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].origin;
+    s.posed[i] = s.stamp;
+  }
+  return s.shape_poses[i];
+}
+
+double CollisionChecker::box_gap(const ObstacleBox& box, const Eigen::Vector3d& c, double radius,
+                                 Eigen::Vector3d* direction) const {
   const Eigen::Vector3d local = box.rotation_t * (c - box.center);
   const Eigen::Vector3d excess = local.cwiseAbs() - box.half_extents;
-  const double outside = excess.cwiseMax(0.0).norm();
+  const Eigen::Vector3d beyond = excess.cwiseMax(0.0);
+  const double outside = beyond.norm();
+  if (direction != nullptr) {
+    // World direction from the box towards the centre: from the nearest box point when the
+    // centre is outside, else the normal of the nearest face.
+    Eigen::Vector3d d;
+    if (outside > 0.0) {
+      d = beyond.cwiseProduct(local.cwiseSign()) / outside;
+    } else {
+      Eigen::Index k = 0;
+      excess.maxCoeff(&k);
+      d = Eigen::Vector3d::Unit(k) * (local[k] < 0.0 ? -1.0 : 1.0);
+    }
+    *direction = box.rotation_t.transpose() * d;
+  }
   // A lower bound on the signed distance between anything in the ball and anything in the
   // box. Centre outside: the gap minus the radius. Centre inside: minus the ball's penetration
   // depth, the radius plus the centre's depth below the nearest face (-radius alone is no
@@ -245,16 +335,25 @@ bool CollisionChecker::is_valid(const Eigen::Ref<const Eigen::VectorXd>& q) cons
 bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_poses) const {
   Scratch& s = scratch();
   place(link_poses, s);
-  for (const EnvironmentPair& p : environment_pairs_) {
-    const RobotShape& rs = shapes_[static_cast<std::size_t>(p.shape)];
-    if (box_gap(boxes_[static_cast<std::size_t>(p.obstacle)],
-                s.centers[static_cast<std::size_t>(p.shape)], rs.radius) > 0.0) {
-      continue;
-    }
-    const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
-    if (intersect(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
-                  s.shape_poses[static_cast<std::size_t>(p.shape)], o.shape, o.pose)) {
-      return false;
+  // Balls against oriented boxes: a shape group's ball first, then its shapes' balls. A ball
+  // is clear of a box when its centre is further than its radius from the box.
+  const auto clear = [](const ObstacleBox& box, const Eigen::Vector3d& c, double radius) {
+    const Eigen::Vector3d local = box.rotation_t * (c - box.center);
+    return (local.cwiseAbs() - box.half_extents).cwiseMax(0.0).squaredNorm() > radius * radius;
+  };
+  for (const EnvironmentBlock& block : blocks_) {
+    const ObstacleBox& box = boxes_[static_cast<std::size_t>(block.obstacle)];
+    const auto g = static_cast<std::size_t>(block.group);
+    if (block.end - block.begin > 1 && clear(box, s.group_centers[g], s.group_radii[g])) continue;
+    for (int i = block.begin; i < block.end; ++i) {
+      const int shape = environment_pairs_[static_cast<std::size_t>(i)].shape;
+      const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
+      if (clear(box, s.centers[static_cast<std::size_t>(shape)], rs.radius)) continue;
+      const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(block.obstacle)];
+      if (intersect(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
+                    shape_pose(shape, s), o.shape, o.pose)) {
+        return false;
+      }
     }
   }
   for (const SelfPair& p : self_pairs_) {
@@ -266,9 +365,9 @@ bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_po
       continue;
     }
     if (intersect(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
-                  s.shape_poses[static_cast<std::size_t>(p.a)],
+                  shape_pose(p.a, s),
                   model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
-                  s.shape_poses[static_cast<std::size_t>(p.b)])) {
+                  shape_pose(p.b, s))) {
       return false;
     }
   }
@@ -288,26 +387,106 @@ ClearanceResult CollisionChecker::clearance_at(
   place(link_poses, s);
   ClearanceResult best;
   const std::size_t n_env = environment_pairs_.size();
-  const std::size_t n_all = n_env + self_pairs_.size();
-  if (n_all == 0) return best;
-  // Lower bounds: ball against oriented box (environment), ball against ball (self).
-  std::size_t first = 0;
-  for (std::size_t i = 0; i < n_all; ++i) {
-    double lb;
-    if (i < n_env) {
-      const EnvironmentPair& p = environment_pairs_[i];
-      lb = box_gap(boxes_[static_cast<std::size_t>(p.obstacle)],
-                   s.centers[static_cast<std::size_t>(p.shape)],
-                   shapes_[static_cast<std::size_t>(p.shape)].radius);
-    } else {
-      const SelfPair& p = self_pairs_[i - n_env];
-      lb = (s.centers[static_cast<std::size_t>(p.a)] - s.centers[static_cast<std::size_t>(p.b)])
-               .norm() -
-           shapes_[static_cast<std::size_t>(p.a)].radius -
-           shapes_[static_cast<std::size_t>(p.b)].radius;
+  if (n_env + self_pairs_.size() == 0) return best;
+  // Candidates: pairs whose lower bound on the signed distance is below `cut`, an upper bound
+  // on the minimum (the distance between two points of some pair's shapes). A pair whose lower
+  // bound reaches the cut cannot be closer than that pair, so it is dropped. Lower bounds:
+  // bounding balls (and, for a group of shapes, the group's ball), then, for the pairs they
+  // leave, the slab between the shapes' supporting planes along the balls' direction, taken
+  // nearest ball first so that the cut tightens early. Self pairs first: on arms they are
+  // often the closest, which sets a low cut for the obstacles.
+  double cut = std::numeric_limits<double>::infinity();
+  s.candidates.clear();
+  s.nearest.clear();
+  for (std::size_t k = 0; k < self_pairs_.size(); ++k) {
+    const SelfPair& p = self_pairs_[k];
+    s.nearest.emplace_back(
+        (s.centers[static_cast<std::size_t>(p.b)] - s.centers[static_cast<std::size_t>(p.a)])
+                .norm() -
+            shapes_[static_cast<std::size_t>(p.a)].radius -
+            shapes_[static_cast<std::size_t>(p.b)].radius,
+        static_cast<int>(k));
+  }
+  // The nearest first (it sets the cut), then the others still below the cut, in order.
+  const auto add_self = [&](double ball, int k) {
+    const SelfPair& p = self_pairs_[static_cast<std::size_t>(k)];
+    const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
+    const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
+    const Eigen::Vector3d ab =
+        s.centers[static_cast<std::size_t>(p.b)] - s.centers[static_cast<std::size_t>(p.a)];
+    const double centres = ab.norm();
+    double lb = ball;
+    if (centres > 0.0) {
+      double slab, upper;
+      slab_bounds(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
+                  shape_pose(p.a, s),
+                  model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
+                  shape_pose(p.b, s), ab / centres, &slab, &upper);
+      lb = std::max(lb, slab);
+      if (lb >= cut) return;
+      cut = std::min(cut, upper);
     }
-    s.lower_bounds[i] = lb;
-    if (lb < s.lower_bounds[first]) first = i;
+    s.candidates.emplace_back(lb, static_cast<int>(n_env) + k);
+  };
+  if (!s.nearest.empty()) {
+    std::iter_swap(s.nearest.begin(), std::min_element(s.nearest.begin(), s.nearest.end()));
+    add_self(s.nearest.front().first, s.nearest.front().second);
+    const auto below =
+        std::remove_if(s.nearest.begin() + 1, s.nearest.end(),
+                       [&](const std::pair<double, int>& e) { return e.first >= cut; });
+    std::sort(s.nearest.begin() + 1, below);
+    for (auto it = s.nearest.begin() + 1; it != below && it->first < cut; ++it) {
+      add_self(it->first, it->second);
+    }
+  }
+  // box_gap(box, c, radius) when it is below the cut; the square root only then.
+  const auto ball_below_cut = [](const ObstacleBox& box, const Eigen::Vector3d& c, double radius,
+                                 double cut_now, double* gap) {
+    const Eigen::Vector3d local = box.rotation_t * (c - box.center);
+    const Eigen::Vector3d excess = local.cwiseAbs() - box.half_extents;
+    const double outside_squared = excess.cwiseMax(0.0).squaredNorm();
+    if (outside_squared == 0.0) {
+      *gap = excess.maxCoeff() - radius;
+    } else {
+      const double reach = cut_now + radius;  // gap < cut <=> outside < reach
+      if (!(reach > 0.0) || outside_squared >= reach * reach) return false;
+      *gap = std::sqrt(outside_squared) - radius;
+    }
+    return *gap < cut_now;
+  };
+  s.nearest.clear();
+  for (const EnvironmentBlock& block : blocks_) {
+    const ObstacleBox& box = boxes_[static_cast<std::size_t>(block.obstacle)];
+    const auto g = static_cast<std::size_t>(block.group);
+    double ball = 0.0;
+    if (block.end - block.begin > 1 &&
+        !ball_below_cut(box, s.group_centers[g], s.group_radii[g], cut, &ball)) {
+      continue;
+    }
+    for (int i = block.begin; i < block.end; ++i) {
+      const int shape = environment_pairs_[static_cast<std::size_t>(i)].shape;
+      if (ball_below_cut(box, s.centers[static_cast<std::size_t>(shape)],
+                         shapes_[static_cast<std::size_t>(shape)].radius, cut, &ball)) {
+        s.nearest.emplace_back(ball, i);
+      }
+    }
+  }
+  std::sort(s.nearest.begin(), s.nearest.end());
+  for (const auto& [ball, i] : s.nearest) {
+    if (ball >= cut) break;
+    const EnvironmentPair& p = environment_pairs_[static_cast<std::size_t>(i)];
+    const RobotShape& rs = shapes_[static_cast<std::size_t>(p.shape)];
+    const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
+    Eigen::Vector3d towards_shape;
+    box_gap(boxes_[static_cast<std::size_t>(p.obstacle)],
+            s.centers[static_cast<std::size_t>(p.shape)], rs.radius, &towards_shape);
+    double slab, upper;
+    slab_bounds(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
+                shape_pose(p.shape, s), o.shape, o.pose, -towards_shape, &slab, &upper);
+    const double lb = std::max(ball, slab);
+    if (lb >= cut) continue;
+    cut = std::min(cut, upper);
+    s.candidates.emplace_back(lb, i);
   }
   const auto evaluate = [&](std::size_t i) {
     ++best.exact_queries;
@@ -317,7 +496,7 @@ ClearanceResult CollisionChecker::clearance_at(
       const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
       const SignedDistanceResult r =
           signed_distance(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
-                          s.shape_poses[static_cast<std::size_t>(p.shape)], o.shape, o.pose);
+                          shape_pose(p.shape, s), o.shape, o.pose);
       if (r.signed_distance < best.distance) {
         best.distance = r.signed_distance;
         best.self = false;
@@ -336,11 +515,9 @@ ClearanceResult CollisionChecker::clearance_at(
       const SelfPair& p = self_pairs_[i - n_env];
       const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
       const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
-      const SignedDistanceResult r =
-          signed_distance(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
-                          s.shape_poses[static_cast<std::size_t>(p.a)],
-                          model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
-                          s.shape_poses[static_cast<std::size_t>(p.b)]);
+      const SignedDistanceResult r = signed_distance(
+          model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape, shape_pose(p.a, s),
+          model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape, shape_pose(p.b, s));
       if (r.signed_distance < best.distance) {
         best.distance = r.signed_distance;
         best.self = true;
@@ -358,9 +535,11 @@ ClearanceResult CollisionChecker::clearance_at(
       }
     }
   };
-  evaluate(first);
-  for (std::size_t i = 0; i < n_all; ++i) {
-    if (i != first && s.lower_bounds[i] < best.distance) evaluate(i);
+  // Exact signed distances in the order of the lower bounds, until a bound reaches the best.
+  std::sort(s.candidates.begin(), s.candidates.end());
+  for (const auto& [lb, i] : s.candidates) {
+    if (lb >= best.distance) break;
+    evaluate(static_cast<std::size_t>(i));
   }
   return best;
 }
@@ -427,16 +606,16 @@ double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q
       const RobotShape& rs = shapes_[static_cast<std::size_t>(p.shape)];
       const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
       *d = distance(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
-                    s.shape_poses[static_cast<std::size_t>(p.shape)], o.shape, o.pose)
+                    shape_pose(p.shape, s), o.shape, o.pose)
                .distance;
     } else {
       const SelfPair& p = self_pairs_[i - n_env];
       const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
       const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
       *d = distance(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
-                    s.shape_poses[static_cast<std::size_t>(p.a)],
+                    shape_pose(p.a, s),
                     model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
-                    s.shape_poses[static_cast<std::size_t>(p.b)])
+                    shape_pose(p.b, s))
                .distance;
     }
     return *d > min_clearance;

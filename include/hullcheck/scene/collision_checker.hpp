@@ -91,6 +91,10 @@ class CollisionChecker {
     Eigen::Vector3d center;  // bounding ball centre in the link frame
     double radius;
     std::string_view link_name;
+    bool at_link_frame;  // the shape's origin is the identity: its pose is the link's pose
+  };
+  struct ShapeGroup {  // consecutive robot shapes, shapes_[begin, end), culled together
+    int begin, end;
   };
   struct ObstacleBox {           // oriented bounding box of an obstacle (margin included)
     Eigen::Matrix3d rotation_t;  // world -> box frame rotation
@@ -104,10 +108,17 @@ class CollisionChecker {
     int shape;     // index into shapes_
     int obstacle;  // index into scene_.obstacles
   };
+  struct EnvironmentBlock {  // the pairs of one shape group with one obstacle
+    int group;               // index into groups_
+    int obstacle;
+    int begin, end;  // environment_pairs_[begin, end)
+  };
   struct Scratch;
   Scratch& scratch() const;
   void place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const;
-  double box_gap(const ObstacleBox& box, const Eigen::Vector3d& c, double radius) const;
+  const Eigen::Isometry3d& shape_pose(int shape, Scratch& s) const;
+  double box_gap(const ObstacleBox& box, const Eigen::Vector3d& c, double radius,
+                 Eigen::Vector3d* direction = nullptr) const;
   /// Extra motion bound (m) over the straight motion q0 -> q1 from prismatic values beyond the
   /// limits the lever arms assume.
   double prismatic_excess_motion(const Eigen::Ref<const Eigen::VectorXd>& q0,
@@ -119,7 +130,9 @@ class CollisionChecker {
   std::vector<RobotShape> shapes_;
   std::vector<ObstacleBox> boxes_;
   std::vector<SelfPair> self_pairs_;
-  std::vector<EnvironmentPair> environment_pairs_;
+  std::vector<EnvironmentPair> environment_pairs_;  // grouped by block
+  std::vector<ShapeGroup> groups_;
+  std::vector<EnvironmentBlock> blocks_;
   // Motion bound: per variable, the largest lever arm over the shapes it moves (m; 1 for
   // prismatic variables, which move points by |dq|).
   Eigen::VectorXd lever_;
