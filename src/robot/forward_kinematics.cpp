@@ -45,13 +45,9 @@ void RobotModel::build_kinematics() {
         step.axis_sign = joint.axis[k] > 0.0 ? 1.0 : -1.0;
       }
     }
-    if (joint.mimic_variable >= 0) {
-      step.variable = joint.mimic_variable;
-      step.multiplier = joint.mimic_multiplier;
-      step.offset = joint.mimic_offset;
-    } else {
-      step.variable = joint.variable;
-    }
+    step.variable = joint.driver();
+    step.multiplier = joint.driver_multiplier();
+    step.offset = joint.driver_offset();
     steps_.push_back(step);
   }
 }

@@ -11,8 +11,8 @@ void add_chain(const RobotModel& model, const std::vector<Eigen::Isometry3d>& po
   for (int l = link; model.link(l).parent_joint >= 0;) {
     const Joint& joint = model.joint(model.link(l).parent_joint);
     if (joint.type != JointType::kFixed) {
-      const int variable = joint.mimic_variable >= 0 ? joint.mimic_variable : joint.variable;
-      const double multiplier = joint.mimic_variable >= 0 ? joint.mimic_multiplier : 1.0;
+      const int variable = joint.driver();
+      const double multiplier = joint.driver_multiplier();
       // The joint's axis in the model frame: the child frame's orientation times the axis
       // (rotation about the axis leaves it unchanged); its origin: the child frame's origin.
       const Eigen::Isometry3d& child = poses[static_cast<std::size_t>(joint.child_link)];

@@ -215,12 +215,7 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
       }
       for (int k : model_->link(l).child_joints) {
         const Joint& child = model_->joint(k);
-        double travel = 0.0;
-        if (child.type == JointType::kPrismatic) {
-          const double m = child.mimic_variable >= 0 ? std::abs(child.mimic_multiplier) : 1.0;
-          const double o = child.mimic_variable >= 0 ? std::abs(child.mimic_offset) : 0.0;
-          travel = m * std::max(std::abs(child.lower), std::abs(child.upper)) + o;
-        }
+        const double travel = child.type == JointType::kPrismatic ? child.limit_reach() : 0.0;
         reach[static_cast<std::size_t>(child.child_link)] =
             reach[static_cast<std::size_t>(l)] + child.origin.translation().norm() + travel;
         stack.push_back(child.child_link);
@@ -240,8 +235,8 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
   for (int ji = 0; ji < joint_count; ++ji) {
     const Joint& joint = model_->joint(ji);
     if (joint.type == JointType::kFixed) continue;
-    const int v = joint.mimic_variable >= 0 ? joint.mimic_variable : joint.variable;
-    const double m = joint.mimic_variable >= 0 ? std::abs(joint.mimic_multiplier) : 1.0;
+    const int v = joint.driver();
+    const double m = std::abs(joint.driver_multiplier());
     lever_[v] += m * arm.row(ji).maxCoeff();
     shape_levers_.col(v) += m * arm.row(ji).transpose();
     for (std::size_t p = 0; p < self_pairs_.size(); ++p) {
@@ -644,20 +639,16 @@ double CollisionChecker::prismatic_excess_motion(
   double extra = 0.0;
   for (const Joint& joint : model_->joints()) {
     if (joint.type != JointType::kPrismatic) continue;
-    const bool mimic = joint.mimic_variable >= 0;
-    const int v = mimic ? joint.mimic_variable : joint.variable;
-    const double m = mimic ? std::abs(joint.mimic_multiplier) : 1.0;
-    const double o = mimic ? std::abs(joint.mimic_offset) : 0.0;
-    const double travel = m * std::max(std::abs(joint.lower), std::abs(joint.upper)) + o;
-    const double beyond = m * std::max(std::abs(q0[v]), std::abs(q1[v])) + o - travel;
+    const int v = joint.driver();
+    const double beyond =
+        std::abs(joint.driver_multiplier()) * std::max(std::abs(q0[v]), std::abs(q1[v])) +
+        std::abs(joint.driver_offset()) - joint.limit_reach();
     if (!(beyond > 0.0)) continue;
     for (int l = joint.parent_link; model_->link(l).parent_joint >= 0;) {
       const Joint& above = model_->joint(model_->link(l).parent_joint);
       if (above.type == JointType::kRevolute || above.type == JointType::kContinuous) {
-        const bool above_mimic = above.mimic_variable >= 0;
-        const int va = above_mimic ? above.mimic_variable : above.variable;
-        extra += beyond * (above_mimic ? std::abs(above.mimic_multiplier) : 1.0) *
-                 std::abs(q1[va] - q0[va]);
+        const int va = above.driver();
+        extra += beyond * std::abs(above.driver_multiplier()) * std::abs(q1[va] - q0[va]);
       }
       l = above.parent_link;
     }

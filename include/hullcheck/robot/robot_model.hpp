@@ -2,6 +2,8 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <hullcheck/robot/resource_path.hpp>
 #include <hullcheck/shape.hpp>
 #include <limits>
@@ -37,6 +39,17 @@ struct Joint {
   int mimic_variable = -1;
   double mimic_multiplier = 1.0;
   double mimic_offset = 0.0;
+
+  /// The configuration value that moves this joint (its own, or its mimic leader's); -1 for
+  /// fixed joints. position = driver_multiplier() * q[driver()] + driver_offset().
+  int driver() const { return mimic_variable >= 0 ? mimic_variable : variable; }
+  double driver_multiplier() const { return mimic_variable >= 0 ? mimic_multiplier : 1.0; }
+  double driver_offset() const { return mimic_variable >= 0 ? mimic_offset : 0.0; }
+  /// Largest |position| within the limits (prismatic: the farthest travel, m).
+  double limit_reach() const {
+    return std::abs(driver_multiplier()) * std::max(std::abs(lower), std::abs(upper)) +
+           std::abs(driver_offset());
+  }
 };
 
 /// One collision element of a link, as a convex shape.
