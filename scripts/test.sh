@@ -9,38 +9,43 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 jobs="$(nproc)"
+stage_start=$SECONDS
+# Prints how long the previous stage took (CI budget: the whole script in 10 minutes on 2 cores).
+stage() {
+  echo "   ($((SECONDS - stage_start)) s)"
+  stage_start=$SECONDS
+  echo "== $1"
+}
 
-echo "== clang-format"
+stage "clang-format"
 git ls-files '*.hpp' '*.cpp' | xargs clang-format --dry-run --Werror
 
-echo "== Release build and tests"
+stage "Release build and tests"
 cmake -S . -B build/ci-release -DCMAKE_BUILD_TYPE=Release -DHULLCHECK_BUILD_BENCHMARKS=ON >/dev/null
 cmake --build build/ci-release -j"$jobs"
 (cd build/ci-release && ctest --output-on-failure -j"$jobs")
 
-echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
+stage "AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 cmake -S . -B build/ci-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHULLCHECK_SANITIZE=ON >/dev/null
 cmake --build build/ci-sanitize -j"$jobs" --target hullcheck_tests
 (cd build/ci-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --output-on-failure -j"$jobs")
 
-echo "== ThreadSanitizer build and multi-threaded planning tests"
+stage "ThreadSanitizer build and multi-threaded planning tests"
 # OMPL's parallel planners (ParallelPlan of PRMs and RRTConnects) and plain threads sharing one
 # checker, validity checker and motion validator. libompl itself is not instrumented (its
 # internal accesses are invisible to TSan); no suppressions are needed.
-tsan_start=$SECONDS
 cmake -S . -B build/ci-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS=-fsanitize=thread \
   -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread -DHULLCHECK_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build/ci-tsan -j"$jobs" --target hullcheck_thread_tests
 TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
   build/ci-tsan/tests/hullcheck_thread_tests --gtest_filter='OmplThreads.*'
-echo "ThreadSanitizer stage: $((SECONDS - tsan_start)) s"
 
-echo "== Install and find_package(hullcheck) from a consumer"
+stage "Install and find_package(hullcheck) from a consumer"
 prefix="$(mktemp -d)"
 cmake --install build/ci-release --prefix "$prefix" >/dev/null
 cmake -S tests/install_consumer -B build/ci-consumer -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
 cmake --build build/ci-consumer -j"$jobs"
 ./build/ci-consumer/hullcheck_consumer
 rm -rf "$prefix"
-echo "== all checks passed"
+stage "all checks passed in $SECONDS s"
