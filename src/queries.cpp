@@ -1,3 +1,4 @@
+#include <cmath>
 #include <hullcheck/errors.hpp>
 #include <hullcheck/queries.hpp>
 #include <string>
@@ -21,10 +22,10 @@ void require_finite(const Eigen::Isometry3d& pose, const char* what) {
 
 detail::Answer checked_query(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                              const Eigen::Isometry3d& pose_b, detail::QueryKind kind,
-                             const QueryOptions& options) {
+                             const QueryOptions& options, double cutoff = INFINITY) {
   require_finite(pose_a, "pose_a");
   require_finite(pose_b, "pose_b");
-  return detail::query(a, pose_a, b, pose_b, kind, options, nullptr);
+  return detail::query(a, pose_a, b, pose_b, kind, options, nullptr, cutoff);
 }
 
 }  // namespace
@@ -51,6 +52,14 @@ SignedDistanceResult signed_distance(const Shape& a, const Eigen::Isometry3d& po
                                      const QueryOptions& options) {
   return detail::to_signed_distance_result(
       checked_query(a, pose_a, b, pose_b, detail::QueryKind::kSignedDistance, options));
+}
+
+SignedDistanceResult signed_distance_below(const Shape& a, const Eigen::Isometry3d& pose_a,
+                                           const Shape& b, const Eigen::Isometry3d& pose_b,
+                                           double cutoff, const QueryOptions& options) {
+  if (std::isnan(cutoff)) throw InputError("signed_distance_below: cutoff is NaN");
+  return detail::to_signed_distance_result(
+      checked_query(a, pose_a, b, pose_b, detail::QueryKind::kSignedDistance, options, cutoff));
 }
 
 }  // namespace hullcheck

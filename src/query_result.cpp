@@ -10,6 +10,8 @@ const char* to_string(Status status) {
       return "iteration cap";
     case Status::kDegenerate:
       return "degenerate";
+    case Status::kAboveCutoff:
+      return "above cutoff";
   }
   return "unknown";
 }

@@ -142,7 +142,9 @@ void compare_with_fcl(const test::MbmRobot& robot, const RobotSetup& r, const Pr
     out->brute_seconds += seconds_since(t0);
     const double brute_error = std::abs(brute - c.distance);
     out->max_bruteforce_error = std::max(out->max_bruteforce_error, brute_error);
-    EXPECT_LE(brute_error, 1e-12) << "state " << n << ": clearance " << c.distance
+    // The checker's queries stop early on pairs that cannot beat the best so far and may take
+    // another path (boolean GJK then EPA): equal within the query tolerance (1e-10 x size).
+    EXPECT_LE(brute_error, 2e-10) << "state " << n << ": clearance " << c.distance
                                   << " vs brute force " << brute;
 
     ++out->states;
@@ -262,7 +264,7 @@ TEST(CollisionCheckerFcl, OwnArmSceneAllowedPairs) {
     for (std::size_t i = 0; i < fcl.pairs().size(); ++i) {
       brute = std::min(brute, pair_signed_distance(*setup.model, scene, fcl, i).signed_distance);
     }
-    EXPECT_NEAR(c.distance, brute, 1e-12) << "state " << n;
+    EXPECT_NEAR(c.distance, brute, 2e-10) << "state " << n;  // query tolerance, as above
     const test::FclDistance fd = fcl.min_distance();
     const bool near = std::abs(c.distance) < 2e-9 || (!fd.collision && fd.distance < 2e-9);
     if (valid == fcl.in_collision()) (near ? in_band : disagreements)++;

@@ -33,4 +33,15 @@ SignedDistanceResult signed_distance(const Shape& a, const Eigen::Isometry3d& po
                                      const Shape& b, const Eigen::Isometry3d& pose_b,
                                      const QueryOptions& options = {});
 
+/// signed_distance() for callers that need the answer only when it is below `cutoff` (m), such
+/// as a running minimum over many pairs: pass the smallest value so far. Once the signed
+/// distance is proven to be at least `cutoff` (bounding balls, a GJK support plane, or, for
+/// overlapping shapes, an EPA support plane), the query stops with status kAboveCutoff and
+/// signed_distance set to that proven lower bound (>= cutoff; points and normal zero).
+/// Otherwise the result is signed_distance()'s, to the same tolerance. A cutoff <= 0 makes the
+/// query as cheap as intersect() on separated shapes. Throws InputError for a NaN cutoff.
+SignedDistanceResult signed_distance_below(const Shape& a, const Eigen::Isometry3d& pose_a,
+                                           const Shape& b, const Eigen::Isometry3d& pose_b,
+                                           double cutoff, const QueryOptions& options = {});
+
 }  // namespace hullcheck

@@ -11,6 +11,8 @@ enum class Status {
   kIterationCap,  ///< Stopped at the iteration cap (or EPA storage); best answer so far.
   kDegenerate,    ///< Numerical limit reached (no further progress possible in double
                   ///< precision); the answer is the best bound found, see each result.
+  kAboveCutoff,   ///< signed_distance_below() only: the signed distance is proven to be at
+                  ///< least the caller's cutoff; the value is that proven lower bound.
 };
 
 const char* to_string(Status status);

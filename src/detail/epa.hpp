@@ -141,8 +141,11 @@ bool epa_initial_tetrahedron(MD& md, Simplex& s, double epsilon, Eigen::Vector3d
 /// EPA from a tetrahedron `s` that contains the origin (on its boundary at worst).
 /// `tolerance`: absolute; stops when the support distance along the closest face's normal is
 /// within it of the face's distance (then the depth is exact to `tolerance`).
+/// `stop_depth`: when the depth is proven below it (a support plane closer than it), EPA stops
+/// with status kAboveCutoff and `depth` = that upper bound of the depth (no witnesses).
 template <class MD>
-EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, EpaWorkspace& ws) {
+EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, EpaWorkspace& ws,
+              double stop_depth = INFINITY) {
   using epa_internal::closest_on_face;
   using epa_internal::set_plane;
   EpaOutput out;
@@ -206,6 +209,11 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
     md.support(closest.normal, w);
     const double support_offset = closest.normal.dot(w.w);
     if (support_offset - closest.offset <= tolerance) break;  // converged
+    if (support_offset < stop_depth) {  // every point of the boundary is within that plane
+      out.status = Status::kAboveCutoff;
+      out.depth = support_offset;
+      return out;
+    }
     // Remove every face that sees w, walking from the closest face; collect the horizon.
     const int new_vertex = vertex_count++;
     int horizon_count = 0;

@@ -65,10 +65,11 @@ inline bool reduce_simplex(Simplex& s) {
 }
 
 /// `initial` (optional, warm start): a simplex of support points to start from instead of
-/// the single point in direction -v.
+/// the single point in direction -v. `stop_distance`: once the core distance is proven to be
+/// at least this, GJK stops with status kAboveCutoff (lower_bound holds the proof).
 template <class MD>
 GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int max_iterations,
-              GjkGoal goal, const Simplex* initial = nullptr) {
+              GjkGoal goal, const Simplex* initial = nullptr, double stop_distance = INFINITY) {
   GjkOutput out;
   Simplex& s = out.simplex;
   if (!(v.squaredNorm() > 0.0)) v = Eigen::Vector3d::UnitX();
@@ -98,6 +99,10 @@ GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int ma
         lower = vw / std::sqrt(best_distance_squared);
       }
       if (goal != GjkGoal::kDistance && lower > radius) break;  // separating plane found
+      if (lower >= stop_distance) {
+        out.status = Status::kAboveCutoff;
+        break;
+      }
       // Converged when |v| - lower <= tolerance, i.e. |v|^2 <= (lower + tolerance)^2.
       const double reach = lower + tolerance;
       if (best_distance_squared <= reach * reach) break;

@@ -64,16 +64,20 @@ decltype(auto) with_core(const Shape& shape, F&& f) {
 
 /// EPA from a simplex enclosing the origin (any size; grown to a tetrahedron), radii added,
 /// results in the world frame written into `answer` (overlapping, signed distance -depth).
+/// `cutoff` (signed distance): once the signed distance is proven above it, EPA stops and the
+/// answer has status kAboveCutoff with that proven lower bound and no points.
 template <class MD>
 void add_penetration(MD& md, Simplex simplex, double radius_a, double radius_b,
                      const Eigen::Isometry3d& pose_a, double tolerance, const QueryOptions& options,
-                     Answer& answer) {
+                     Answer& answer, double cutoff = INFINITY) {
   Eigen::Vector3d flat_normal;
   EpaOutput e;
   const Eigen::Vector3d common_point = simplex.point_a();
   if (epa_initial_tetrahedron(md, simplex, tolerance, flat_normal)) {
     thread_local EpaWorkspace workspace;
-    e = epa(md, simplex, tolerance, options.max_epa_iterations, workspace);
+    // Signed distance -(depth + radii) > cutoff <=> depth < -cutoff - radii.
+    e = epa(md, simplex, tolerance, options.max_epa_iterations, workspace,
+            -cutoff - radius_a - radius_b);
   } else {
     // The difference is flat and contains the origin: depth 0 across its plane.
     e.depth = 0.0;
@@ -89,16 +93,21 @@ void add_penetration(MD& md, Simplex simplex, double radius_a, double radius_b,
   answer.iterations += e.iterations;
   if (e.status != Status::kConverged) answer.status = e.status;
   answer.signed_distance = -(e.depth + radius_a + radius_b);
+  if (e.status == Status::kAboveCutoff) return;
   answer.normal = pose_a.linear() * e.normal;
   answer.point_a = pose_a * (e.point_a + radius_a * e.normal);
   answer.point_b = pose_a * (e.point_b - radius_b * e.normal);
 }
 
 /// Core query between two placed cores. `warm` (optional) supplies and receives the warm start.
+/// `cutoff` (kSignedDistance only): the caller needs the answer only when the signed distance
+/// is below it; once it is proven to be at least the cutoff, the query stops with status
+/// kAboveCutoff and signed_distance = the proven lower bound (no points, no normal).
 template <class CoreA, class CoreB>
 Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
                  const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
-                 QueryKind kind, const QueryOptions& options, WarmStart* warm) {
+                 QueryKind kind, const QueryOptions& options, WarmStart* warm,
+                 double cutoff = INFINITY) {
   const double radius = radius_a + radius_b;
   const Eigen::Matrix3d rotation_a_t = pose_a.linear().transpose();
   const Eigen::Vector3d offset_world = pose_b.translation() - pose_a.translation();
@@ -107,6 +116,18 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   const Eigen::Vector3d centres =
       core_a.center() - rotation_a_t * (pose_b.linear() * core_b.center() + offset_world);
   const double centres_squared = centres.squaredNorm();
+  const bool has_cutoff = kind == QueryKind::kSignedDistance && cutoff < INFINITY;
+  if (has_cutoff) {
+    // The balls around the cores bound the signed distance from below.
+    const double outer = core_a.outer_radius() + core_b.outer_radius() + radius;
+    const double reach = cutoff + outer;  // lower bound >= cutoff <=> |centres| >= reach
+    if (reach <= 0.0 || centres_squared >= reach * reach) {
+      Answer answer;
+      answer.status = Status::kAboveCutoff;
+      answer.signed_distance = std::sqrt(centres_squared) - outer;
+      return answer;
+    }
+  }
   if (kind == QueryKind::kIntersect || kind == QueryKind::kPenetration) {
     // Balls around the cores prove separation.
     const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
@@ -166,8 +187,9 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   const double rounding =
       16.0 * std::numeric_limits<double>::epsilon() * (md.translation.norm() + 2.0 * scale);
   const double tolerance = std::max(options.relative_tolerance * scale, rounding);
-  if (kind == QueryKind::kPenetration) {
-    // The cheap boolean GJK proves separation or yields a tetrahedron around the origin.
+  if (kind == QueryKind::kPenetration || (has_cutoff && cutoff <= 0.0)) {
+    // The cheap boolean GJK proves separation or yields a tetrahedron around the origin. (A
+    // signed distance needed only below a cutoff <= 0 matters only when the shapes overlap.)
     SimplexVertex tetrahedron[4];
     int boolean_iterations = 0;
     const BooleanVerdict verdict =
@@ -175,6 +197,10 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
     if (verdict == BooleanVerdict::kApart) {
       Answer answer;
       answer.iterations = boolean_iterations;
+      if (has_cutoff) {  // proven apart: signed distance > 0 >= cutoff
+        answer.status = Status::kAboveCutoff;
+        answer.signed_distance = 0.0;
+      }
       return answer;
     }
     if (verdict == BooleanVerdict::kOverlapping) {
@@ -187,15 +213,17 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
       }
       Answer answer;
       answer.iterations = boolean_iterations;
-      add_penetration(md, simplex, radius_a, radius_b, pose_a, tolerance, options, answer);
+      add_penetration(md, simplex, radius_a, radius_b, pose_a, tolerance, options, answer,
+                      has_cutoff ? cutoff : INFINITY);
       return answer;
     }
   }
   const GjkGoal goal = kind == QueryKind::kIntersect     ? GjkGoal::kBoolean
                        : kind == QueryKind::kPenetration ? GjkGoal::kPenetration
                                                          : GjkGoal::kDistance;
-  const GjkOutput g = gjk(md, v0, radius, tolerance, options.max_gjk_iterations, goal,
-                          warm_simplex.size > 0 ? &warm_simplex : nullptr);
+  const GjkOutput g =
+      gjk(md, v0, radius, tolerance, options.max_gjk_iterations, goal,
+          warm_simplex.size > 0 ? &warm_simplex : nullptr, has_cutoff ? cutoff + radius : INFINITY);
 
   Answer answer;
   answer.iterations = g.iterations;
@@ -210,6 +238,10 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
       // A curved core has no vertex indices: only the direction is kept.
       if (g.simplex.index_a[i] < 0 || g.simplex.index_b[i] < 0) warm->simplex_size = 0;
     }
+  }
+  if (g.status == Status::kAboveCutoff) {  // the shapes are at least `cutoff` apart
+    answer.signed_distance = g.lower_bound - radius;
+    return answer;
   }
   if (kind == QueryKind::kIntersect) {
     answer.overlapping = g.cores_overlap || g.distance <= radius ||
@@ -247,17 +279,19 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
     answer.point_a = answer.point_b = pose_a * g.simplex.point_a();
     return answer;
   }
-  add_penetration(md, g.simplex, radius_a, radius_b, pose_a, tolerance, options, answer);
+  add_penetration(md, g.simplex, radius_a, radius_b, pose_a, tolerance, options, answer,
+                  has_cutoff ? cutoff : INFINITY);
   return answer;
 }
 
 /// Dispatches on both shapes' kinds to run_query.
 inline Answer query(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                     const Eigen::Isometry3d& pose_b, QueryKind kind, const QueryOptions& options,
-                    WarmStart* warm) {
+                    WarmStart* warm, double cutoff = INFINITY) {
   return with_core(a, [&](const auto& core_a, double radius_a) {
     return with_core(b, [&](const auto& core_b, double radius_b) {
-      return run_query(core_a, radius_a, pose_a, core_b, radius_b, pose_b, kind, options, warm);
+      return run_query(core_a, radius_a, pose_a, core_b, radius_b, pose_b, kind, options, warm,
+                       cutoff);
     });
   });
 }

@@ -489,10 +489,10 @@ ClearanceResult CollisionChecker::clearance_at(
       const EnvironmentPair& p = environment_pairs_[i];
       const RobotShape& rs = shapes_[static_cast<std::size_t>(p.shape)];
       const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
-      const SignedDistanceResult r =
-          signed_distance(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
-                          shape_pose(p.shape, s), o.shape, o.pose);
-      if (r.signed_distance < best.distance) {
+      const SignedDistanceResult r = signed_distance_below(
+          model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
+          shape_pose(p.shape, s), o.shape, o.pose, best.distance);
+      if (r.status != Status::kAboveCutoff && r.signed_distance < best.distance) {
         best.distance = r.signed_distance;
         best.self = false;
         best.link_a = rs.link;
@@ -510,10 +510,11 @@ ClearanceResult CollisionChecker::clearance_at(
       const SelfPair& p = self_pairs_[i - n_env];
       const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
       const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
-      const SignedDistanceResult r = signed_distance(
+      const SignedDistanceResult r = signed_distance_below(
           model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape, shape_pose(p.a, s),
-          model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape, shape_pose(p.b, s));
-      if (r.signed_distance < best.distance) {
+          model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape, shape_pose(p.b, s),
+          best.distance);
+      if (r.status != Status::kAboveCutoff && r.signed_distance < best.distance) {
         best.distance = r.signed_distance;
         best.self = true;
         best.link_a = a.link;
@@ -530,7 +531,9 @@ ClearanceResult CollisionChecker::clearance_at(
       }
     }
   };
-  // Exact signed distances in the order of the lower bounds, until a bound reaches the best.
+  // Exact signed distances in the order of the lower bounds, until a bound reaches the best;
+  // each query stops as soon as it proves its pair no closer than the best so far (on a
+  // colliding state, a separated pair costs a boolean test and a shallow one a few EPA steps).
   std::sort(s.candidates.begin(), s.candidates.end());
   for (const auto& [lb, i] : s.candidates) {
     if (lb >= best.distance) break;
