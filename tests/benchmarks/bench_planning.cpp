@@ -7,7 +7,7 @@
 //
 //   bench_planning run --robot URDF --srdf SRDF --problems DIR... --out RESULTS.csv
 //                      [--planner RRTConnect] [--time 10] [--shard i/n] [--seed 1]
-//                      [--per-family N]
+//                      [--per-family N] [--guaranteed]
 //   bench_planning summarize RESULTS.csv... [--table FILE] [--title TEXT]
 //
 // Both checkers plan with OMPL's DiscreteMotionValidator at the same resolution (the FCL checker
@@ -16,7 +16,8 @@
 // (setup included; building the checkers is not). Problems whose start or goal is in collision
 // (by hullcheck; FCL's verdict is recorded beside it) are listed, not planned. Every solution
 // path is re-checked with hullcheck's guaranteed motion validator (conservative advancement)
-// and the result recorded: discrete checking can accept motions that graze an obstacle.
+// and the result recorded: discrete checking can accept motions that cut into an obstacle.
+// With --guaranteed, a third attempt plans with that validator itself (same seed).
 //
 // One CSV line per problem and checker:
 //   robot,problem,checker,start_goal_valid,fcl_agrees,solved,time_s,checks,length,path_valid
@@ -90,6 +91,7 @@ struct RunOptions {
   std::string shard = "0/1";
   unsigned seed = 1;
   int per_family = 0;  // 0: all
+  bool guaranteed = false;  // also plan with hullcheck's guaranteed motion validator
   std::string out;
 };
 
@@ -119,15 +121,15 @@ bool path_is_valid(const ompl::geometric::PathGeometric& path, const hullcheck::
 Attempt plan(const RunOptions& o, const std::shared_ptr<const hullcheck::CollisionChecker>& hc,
              FclBroadphaseChecker* fcl, const std::vector<int>& variables,
              const hullcheck::MotionPlanRequest& request, const hullcheck::PlanningSetup& verify,
-             std::uint_fast32_t seed) {
+             std::uint_fast32_t seed, hullcheck::MotionChecking motions) {
   // The same random sequence for both checkers: OMPL's seed generator re-seeded before anything
   // of this attempt draws a seed (OMPL logs that sampling already started; silenced). With the
   // same verdicts, both searches then visit the same states and make the same checks.
   ::ompl::msg::setLogLevel(::ompl::msg::LOG_NONE);
   ::ompl::RNG::setSeed(seed);
   ::ompl::msg::setLogLevel(::ompl::msg::LOG_ERROR);
-  hullcheck::PlanningSetup planning = hullcheck::make_planning_setup(
-      hc, variables, request.start, hullcheck::MotionChecking::kDiscrete);
+  hullcheck::PlanningSetup planning =
+      hullcheck::make_planning_setup(hc, variables, request.start, motions);
   auto& ss = *planning.setup;
   const auto si = ss.getSpaceInformation();
   std::shared_ptr<FclValidityChecker> fcl_validity;
@@ -191,19 +193,25 @@ void run(const RunOptions& o) {
                               : hullcheck::group_variables(*model, srdf, request.group);
     const bool valid = hc->is_valid(request.start) && hc->is_valid(request.goal);
     const bool fcl_valid = fcl.is_valid(request.start) && fcl.is_valid(request.goal);
-    const char* names[2] = {"hullcheck", "fcl"};
-    Attempt attempts[2];
+    const char* names[3] = {"hullcheck", "fcl", "hullcheck_guaranteed"};
+    Attempt attempts[3];
+    const int checkers = o.guaranteed ? 3 : 2;
     if (valid) {
       const hullcheck::PlanningSetup verify = hullcheck::make_planning_setup(
           hc, variables, request.start, hullcheck::MotionChecking::kGuaranteed);
+      const auto seed =
+          static_cast<std::uint_fast32_t>(o.seed + shard_index + i * shard_count);  // list position
       for (int k = 0; k < 2; ++k) {
         const int which = (static_cast<int>(i) + k) % 2;  // alternate who goes first
-        attempts[which] = plan(o, hc, which == 1 ? &fcl : nullptr, variables, request, verify,
-                               static_cast<std::uint_fast32_t>(o.seed + shard_index +
-                                                               i * shard_count));  // list position
+        attempts[which] = plan(o, hc, which == 1 ? &fcl : nullptr, variables, request, verify, seed,
+                               hullcheck::MotionChecking::kDiscrete);
+      }
+      if (o.guaranteed) {
+        attempts[2] = plan(o, hc, nullptr, variables, request, verify, seed,
+                           hullcheck::MotionChecking::kGuaranteed);
       }
     }
-    for (int c = 0; c < 2; ++c) {
+    for (int c = 0; c < checkers; ++c) {
       const Attempt& a = attempts[c];
       out << model->name() << ',' << problem.name << ',' << names[c] << ',' << (valid ? 1 : 0)
           << ',' << (valid == fcl_valid ? 1 : 0) << ',' << (a.solved ? 1 : 0) << ','
@@ -338,9 +346,14 @@ Group summarize_group(const std::string& name, const std::vector<const Row*>& hc
 void summarize(const std::vector<std::string>& files, const std::string& table_file,
                const std::string& title) {
   const std::vector<Row> rows = read_rows(files);
-  // problem key -> (hullcheck row, fcl row)
+  // problem key -> (hullcheck row, fcl row); guaranteed-mode rows apart
   std::map<std::string, std::pair<const Row*, const Row*>> by_problem;
+  std::map<std::string, std::vector<const Row*>> guaranteed;  // per robot
   for (const Row& r : rows) {
+    if (r.checker == "hullcheck_guaranteed") {
+      guaranteed[r.robot].push_back(&r);
+      continue;
+    }
     auto& slot = by_problem[r.robot + "/" + r.problem];
     (r.checker == "fcl" ? slot.second : slot.first) = &r;
   }
@@ -394,6 +407,25 @@ void summarize(const std::vector<std::string>& files, const std::string& table_f
       << g.fcl.solved << " | " << ms(g.hc.median_time) << " / " << ms(g.fcl.median_time) << " | "
       << ratio(g.fcl.median_time, g.hc.median_time) << " |\n";
   }
+  if (!guaranteed.empty()) {
+    t << "\nhullcheck with its guaranteed motion validator (conservative advancement; same seeds):"
+         "\n\n| robot | valid start/goal | solved | median solve (ms) | paths failing the "
+         "guaranteed re-check |\n|---|---|---|---|---|\n";
+    for (const auto& [robot, list] : guaranteed) {
+      int valid = 0, solved = 0, invalid = 0;
+      std::vector<double> times;
+      for (const Row* r : list) {
+        if (!r->valid) continue;
+        ++valid;
+        solved += r->solved ? 1 : 0;
+        invalid += r->path_valid == 0 ? 1 : 0;
+        times.push_back(r->time);
+      }
+      t << "| " << robot << " | " << valid << " | " << solved << " ("
+        << ratio(100.0 * solved, valid) << "%) | " << ms(median(times)) << " | " << invalid
+        << " |\n";
+    }
+  }
   int disagreements = 0;
   double planning_time = 0.0;
   for (const Group& g : family_groups) {
@@ -428,6 +460,9 @@ int main(int argc, char** argv) {
   run_command->add_option(
       "--seed", o.seed,
       "OMPL's seed for the first problem (the i-th of the list: seed + i; default 1)");
+  run_command->add_flag("--guaranteed", o.guaranteed,
+                        "Also plan with hullcheck's guaranteed motion validator (checker "
+                        "'hullcheck_guaranteed')");
   run_command->add_option("--per-family", o.per_family,
                           "Only the first N problems of each scene family (default: all)");
   run_command->add_option("--out", o.out, "Results CSV to write")->required();
