@@ -90,7 +90,7 @@ struct RunOptions {
   double time = 10.0;
   std::string shard = "0/1";
   unsigned seed = 1;
-  int per_family = 0;  // 0: all
+  int per_family = 0;       // 0: all
   bool guaranteed = false;  // also plan with hullcheck's guaranteed motion validator
   std::string out;
 };
