@@ -13,8 +13,12 @@ namespace hullcheck {
 ///  - normals and witness points are exact to the same order on flat features (polytopes, box
 ///    faces); where the nearest feature is curved (cylinder rim, sphere, margin) a distance
 ///    exact to eps fixes the direction only to about sqrt(2 eps / curvature radius).
-/// Curved cores (cylinders) converge geometrically; they may stop at the iteration cap with a
-/// bracket wider than the tolerance, which the result's status reports.
+/// Curved cores (cylinders) converge geometrically; near touching contact GJK may stop at the
+/// iteration cap or at its numerical limit with a bracket wider than the tolerance, which the
+/// result's status reports (kIterationCap, kDegenerate). The sign is still settled: when that
+/// bracket reaches contact, a boolean GJK decides overlap (then EPA gives the depth). Measured
+/// on shapes touching a face (test NearTouchingOnAFace): such answers stay within 10x the
+/// tolerance.
 struct QueryOptions {
   /// Convergence tolerance relative to scale (see above). 1e-10 leaves a margin of 10x to
   /// the 1e-9 accuracy the tests check, and is ~1e6 x double precision.

@@ -239,6 +239,40 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
       if (g.simplex.index_a[i] < 0 || g.simplex.index_b[i] < 0) warm->simplex_size = 0;
     }
   }
+  if (kind != QueryKind::kIntersect && !g.cores_overlap &&
+      (g.status == Status::kDegenerate || g.status == Status::kIterationCap) &&
+      g.lower_bound <= radius + tolerance) {
+    // GJK stopped short of its tolerance (curved cores converge geometrically near touching
+    // contact; rounding ends progress) with a bracket [lower_bound, distance] on the core
+    // distance that reaches the radii: the sign is undecided, and |v| may exceed the true value
+    // by more than the tolerance. The boolean GJK proves overlap with a tetrahedron of support
+    // points around the origin; then EPA gives the depth (distance queries: a common point).
+    SimplexVertex tetrahedron[4];
+    int boolean_iterations = 0;
+    const BooleanVerdict verdict =
+        gjk_boolean(md, -g.v, 0.0, options.max_gjk_iterations, boolean_iterations, tetrahedron);
+    if (verdict == BooleanVerdict::kOverlapping) {
+      Simplex simplex;
+      simplex.size = 4;
+      for (int i = 0; i < 4; ++i) {
+        simplex.set_vertex(i, tetrahedron[i]);
+        simplex.index_a[i] = simplex.index_b[i] = -1;
+      }
+      Answer overlap;
+      overlap.iterations = g.iterations + boolean_iterations;
+      overlap.overlapping = true;
+      if (kind == QueryKind::kDistance) {
+        // The origin's barycentric weights in the tetrahedron give a point of A that is also a
+        // point of B (sum of weights x (a_i - b_i) = 0).
+        reduce_simplex(simplex);  // keeps all four (origin inside) or the nearest face
+        overlap.point_a = overlap.point_b = pose_a * simplex.point_a();
+        return overlap;
+      }
+      add_penetration(md, simplex, radius_a, radius_b, pose_a, tolerance, options, overlap,
+                      has_cutoff ? cutoff : INFINITY);
+      return overlap;
+    }
+  }
   if (g.status == Status::kAboveCutoff) {  // the shapes are at least `cutoff` apart
     answer.signed_distance = g.lower_bound - radius;
     return answer;
