@@ -2,7 +2,12 @@
 // skip those cleanly when ../shared is absent).
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -58,4 +63,43 @@ inline std::vector<RobotFile> all_robots() {
   return out;
 }
 
+/// Every robot id all_robots() can return (shared ones only when ../shared is present), for
+/// parameterised tests over robots.
+inline const std::vector<std::string>& robot_ids() {
+  static const std::vector<std::string> ids = {
+      "hullcheck_arm",       "panda",   "ur5e",
+      "abb_irb2400",         "baxter",  "mbm_panda",
+      "mbm_panda_spherized", "mbm_ur5", "mbm_ur5_spherized"};
+  return ids;
+}
+
+inline std::optional<RobotFile> find_robot(const std::string& id) {
+  for (const RobotFile& r : all_robots()) {
+    if (r.id == id) return r;
+  }
+  return std::nullopt;
+}
+
+/// Test names of robot-parameterised tests: the robot id.
+inline std::string robot_name_for_test(const testing::TestParamInfo<std::string>& info) {
+  return info.param;
+}
+
+/// A file's whole content (fails the test when it cannot be read).
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  EXPECT_TRUE(in.good()) << path;
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 }  // namespace hullcheck::test
+
+/// In a robot-parameterised test: the RobotFile named by GetParam() as `var`, or a skip when
+/// that robot is absent (no ../shared).
+#define HULLCHECK_GET_ROBOT_OR_SKIP(var)                                                \
+  const std::optional<::hullcheck::test::RobotFile> var##_opt =                         \
+      ::hullcheck::test::find_robot(GetParam());                                        \
+  if (!var##_opt) GTEST_SKIP() << "robot '" << GetParam() << "' absent (no ../shared)"; \
+  const ::hullcheck::test::RobotFile& var = *var##_opt

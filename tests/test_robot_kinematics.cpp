@@ -33,37 +33,10 @@ namespace {
 
 using test::RobotFile;
 
-const std::vector<std::string>& robot_ids() {
-  static const std::vector<std::string> ids = {
-      "hullcheck_arm",       "panda",   "ur5e",
-      "abb_irb2400",         "baxter",  "mbm_panda",
-      "mbm_panda_spherized", "mbm_ur5", "mbm_ur5_spherized"};
-  return ids;
-}
-
-std::optional<RobotFile> find_robot(const std::string& id) {
-  for (const RobotFile& r : test::all_robots()) {
-    if (r.id == id) return r;
-  }
-  return std::nullopt;
-}
-
-#define HULLCHECK_GET_ROBOT_OR_SKIP(var)                                                \
-  const std::optional<RobotFile> var##_opt = find_robot(GetParam());                    \
-  if (!var##_opt) GTEST_SKIP() << "robot '" << GetParam() << "' absent (no ../shared)"; \
-  const RobotFile& var = *var##_opt
-
-std::string robot_name_for_test(const testing::TestParamInfo<std::string>& info) {
-  return info.param;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  EXPECT_TRUE(in.good()) << path;
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::find_robot;
+using test::read_text;
+using test::robot_ids;
+using test::robot_name_for_test;
 
 // ------------------------------------------------------------------------------------------
 // The joints of a URDF, read here with tinyxml2.

@@ -44,29 +44,10 @@ using test::RobotFile;
 // ------------------------------------------------------------------------------------------
 // Robots: every id robot_test_support.hpp knows; shared ones skip when absent.
 
-const std::vector<std::string>& robot_ids() {
-  static const std::vector<std::string> ids = {
-      "hullcheck_arm",       "panda",   "ur5e",
-      "abb_irb2400",         "baxter",  "mbm_panda",
-      "mbm_panda_spherized", "mbm_ur5", "mbm_ur5_spherized"};
-  return ids;
-}
-
-std::optional<RobotFile> find_robot(const std::string& id) {
-  for (const RobotFile& r : test::all_robots()) {
-    if (r.id == id) return r;
-  }
-  return std::nullopt;
-}
-
-#define HULLCHECK_GET_ROBOT_OR_SKIP(var)                                                \
-  const std::optional<RobotFile> var##_opt = find_robot(GetParam());                    \
-  if (!var##_opt) GTEST_SKIP() << "robot '" << GetParam() << "' absent (no ../shared)"; \
-  const RobotFile& var = *var##_opt
-
-std::string robot_name_for_test(const testing::TestParamInfo<std::string>& info) {
-  return info.param;
-}
+using test::find_robot;
+using test::read_text;
+using test::robot_ids;
+using test::robot_name_for_test;
 
 // ------------------------------------------------------------------------------------------
 // An independent reading of a URDF with tinyxml2.
@@ -198,14 +179,6 @@ UrdfFile parse_urdf_text(const std::string& xml, const std::string& dir) {
     out.joints.push_back(joint);
   }
   return out;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  EXPECT_TRUE(in.good()) << path;
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 UrdfFile parse_urdf_file(const std::string& path) {
@@ -448,28 +421,7 @@ const ConvexHull& hull_of(const CollisionShape& s) {
 // ------------------------------------------------------------------------------------------
 // Temporary folders and environment.
 
-class TempDir {
- public:
-  TempDir() {
-    static int counter = 0;
-    path_ =
-        fs::temp_directory_path() / ("hullcheck_test_robot_loading_" + std::to_string(::getpid()) +
-                                     "_" + std::to_string(counter++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-  std::string str() const { return path_.string(); }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 // Unsets ROS_PACKAGE_PATH and AMENT_PREFIX_PATH for its lifetime; restores them afterwards.
 class PackageEnvironment {

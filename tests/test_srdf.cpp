@@ -24,25 +24,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string input_error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InputError, got another exception: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "expected InputError, nothing was thrown";
-  return "";
-}
-
-void expect_contains(const std::string& message, std::initializer_list<std::string> parts) {
-  for (const std::string& part : parts) {
-    EXPECT_NE(message.find(part), std::string::npos) << "message lacks '" << part << "':\n"
-                                                     << message;
-  }
-}
+using test::expect_contains;
+using test::input_error_of;
 
 // ---------------------------------------------------------------- independent reference
 

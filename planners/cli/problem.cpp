@@ -43,17 +43,11 @@ Eigen::VectorXd configuration(const std::string& text, const LoadedWorld& world,
     return group_state_configuration(*world.model, world.srdf, group, text, base);
   }
   Eigen::VectorXd q = base;
-  std::stringstream in(text);
-  std::string item;
   std::vector<double> values;
-  while (std::getline(in, item, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0') {
-      throw InputError(std::string(what) + " '" + text + "': neither a group state of '" + group +
-                       "' nor a list of numbers (item '" + item + "')");
-    }
-    values.push_back(v);
+  std::string bad;
+  if (!parse_number_list(text, &values, &bad)) {
+    throw InputError(std::string(what) + " '" + text + "': neither a group state of '" + group +
+                     "' nor a list of numbers (item '" + bad + "')");
   }
   if (values.size() != variables.size()) {
     throw InputError(std::string(what) + ": " + std::to_string(values.size()) +

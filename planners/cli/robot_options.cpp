@@ -30,8 +30,9 @@ std::shared_ptr<RobotModel> RobotOptions::load() const {
 
 Srdf RobotOptions::load_srdf() const { return srdf.empty() ? Srdf{} : read_srdf_file(srdf); }
 
-Eigen::VectorXd parse_configuration(const std::string& text, const RobotModel& model) {
-  std::vector<double> values;
+bool parse_number_list(const std::string& text, std::vector<double>* values,
+                       std::string* bad_item) {
+  values->clear();
   std::stringstream items(text);
   std::string item;
   while (std::getline(items, item, ',')) {
@@ -40,10 +41,20 @@ Eigen::VectorXd parse_configuration(const std::string& text, const RobotModel& m
     const double v = std::strtod(item.c_str(), &end);
     while (end != nullptr && (*end == ' ' || *end == '\t')) ++end;
     if (item.empty() || end == item.c_str() || *end != '\0') {
-      throw InputError("--state: item " + std::to_string(values.size()) + " ('" + item +
-                       "') is not a number");
+      *bad_item = item;
+      return false;
     }
-    values.push_back(v);
+    values->push_back(v);
+  }
+  return true;
+}
+
+Eigen::VectorXd parse_configuration(const std::string& text, const RobotModel& model) {
+  std::vector<double> values;
+  std::string bad;
+  if (!parse_number_list(text, &values, &bad)) {
+    throw InputError("--state: item " + std::to_string(values.size()) + " ('" + bad +
+                     "') is not a number");
   }
   const Eigen::VectorXd q =
       Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));

@@ -24,6 +24,11 @@ struct RobotOptions {
   Srdf load_srdf() const;
 };
 
+/// Parses "v1, v2,..." (comma-separated numbers, blanks after a number allowed) into `values`;
+/// on the first item that is not a number returns false with it in `bad_item` (`values` then
+/// holds the items before it).
+bool parse_number_list(const std::string& text, std::vector<double>* values, std::string* bad_item);
+
 /// Parses "v1,v2,..." into a configuration for `model` (checked: count and finiteness); names
 /// the bad item when one is not a number.
 Eigen::VectorXd parse_configuration(const std::string& text, const RobotModel& model);

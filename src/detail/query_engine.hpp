@@ -99,6 +99,18 @@ void add_penetration(MD& md, Simplex simplex, double radius_a, double radius_b,
   answer.point_b = pose_a * (e.point_b - radius_b * e.normal);
 }
 
+/// The boolean GJK's tetrahedron around the origin as a GJK simplex (for EPA; no vertex indices).
+inline Simplex enclosing_simplex(const SimplexVertex (&tetrahedron)[4]) {
+  Simplex simplex;
+  simplex.size = 4;
+  for (int i = 0; i < 4; ++i) {
+    simplex.set_vertex(i, tetrahedron[i]);
+    simplex.lambda[i] = i == 0 ? 1.0 : 0.0;
+    simplex.index_a[i] = simplex.index_b[i] = -1;
+  }
+  return simplex;
+}
+
 /// Core query between two placed cores. `warm` (optional) supplies and receives the warm start.
 /// `cutoff` (kSignedDistance only): the caller needs the answer only when the signed distance
 /// is below it; once it is proven to be at least the cutoff, the query stops with status
@@ -204,13 +216,7 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
       return answer;
     }
     if (verdict == BooleanVerdict::kOverlapping) {
-      Simplex simplex;
-      simplex.size = 4;
-      for (int i = 0; i < 4; ++i) {
-        simplex.set_vertex(i, tetrahedron[i]);
-        simplex.lambda[i] = i == 0 ? 1.0 : 0.0;
-        simplex.index_a[i] = simplex.index_b[i] = -1;
-      }
+      Simplex simplex = enclosing_simplex(tetrahedron);
       Answer answer;
       answer.iterations = boolean_iterations;
       add_penetration(md, simplex, radius_a, radius_b, pose_a, tolerance, options, answer,
@@ -252,12 +258,7 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
     const BooleanVerdict verdict =
         gjk_boolean(md, -g.v, 0.0, options.max_gjk_iterations, boolean_iterations, tetrahedron);
     if (verdict == BooleanVerdict::kOverlapping) {
-      Simplex simplex;
-      simplex.size = 4;
-      for (int i = 0; i < 4; ++i) {
-        simplex.set_vertex(i, tetrahedron[i]);
-        simplex.index_a[i] = simplex.index_b[i] = -1;
-      }
+      Simplex simplex = enclosing_simplex(tetrahedron);
       Answer overlap;
       overlap.iterations = g.iterations + boolean_iterations;
       overlap.overlapping = true;

@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmark_flags.hpp"
 #include "fcl_broadphase_checker.hpp"
 
 namespace {
@@ -407,20 +408,7 @@ int main(int argc, char** argv) {
   Options options = parse_options(argc, argv);
   // Defaults unless the caller chose: quick mode runs each benchmark for ~1 ms; a full run
   // repeats each 5 times (0.2 s each) and reports the median.
-  std::vector<char*> args(argv, argv + argc);
-  static char quick_min_time[] = "--benchmark_min_time=0.001";
-  static char full_min_time[] = "--benchmark_min_time=0.2";
-  static char full_repetitions[] = "--benchmark_repetitions=5";
-  bool has_min_time = false, has_repetitions = false;
-  for (int i = 1; i < argc; ++i) {
-    has_min_time |= std::strncmp(argv[i], "--benchmark_min_time", 20) == 0;
-    has_repetitions |= std::strncmp(argv[i], "--benchmark_repetitions", 23) == 0;
-  }
-  if (!has_min_time) args.push_back(options.quick ? quick_min_time : full_min_time);
-  if (!options.quick && !has_repetitions) args.push_back(full_repetitions);
-  int bench_argc = static_cast<int>(args.size());
-  benchmark::Initialize(&bench_argc, args.data());
-  if (benchmark::ReportUnrecognizedArguments(bench_argc, args.data())) return 1;
+  if (!hullcheck::bench::initialize_benchmark(argc, argv, options.quick, 0.001, 5)) return 1;
 
   if (!std::filesystem::exists(options.shared_dir +
                                "/benchmarks/mbm/robots/panda_obj/panda.urdf")) {

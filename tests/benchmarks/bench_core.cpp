@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "bench_data.hpp"
+#include "benchmark_flags.hpp"
 #include "peers.hpp"
 
 #ifndef HULLCHECK_SHARED_DIR
@@ -597,20 +598,7 @@ int main(int argc, char** argv) {
   // Defaults unless the caller chose: quick mode runs each benchmark for ~2 ms; a full run
   // repeats each 3 times (0.2 s each) and reports the fastest repetition, which is robust to
   // other load on the machine.
-  std::vector<char*> args(argv, argv + argc);
-  static char quick_min_time[] = "--benchmark_min_time=0.002";
-  static char full_min_time[] = "--benchmark_min_time=0.2";
-  static char full_repetitions[] = "--benchmark_repetitions=3";
-  bool has_min_time = false, has_repetitions = false;
-  for (int i = 1; i < argc; ++i) {
-    has_min_time |= std::strncmp(argv[i], "--benchmark_min_time", 20) == 0;
-    has_repetitions |= std::strncmp(argv[i], "--benchmark_repetitions", 23) == 0;
-  }
-  if (!has_min_time) args.push_back(options.quick ? quick_min_time : full_min_time);
-  if (!options.quick && !has_repetitions) args.push_back(full_repetitions);
-  int bench_argc = static_cast<int>(args.size());
-  benchmark::Initialize(&bench_argc, args.data());
-  if (benchmark::ReportUnrecognizedArguments(bench_argc, args.data())) return 1;
+  if (!hullcheck::bench::initialize_benchmark(argc, argv, options.quick, 0.002, 3)) return 1;
 
   const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   auto t0 = std::chrono::steady_clock::now();

@@ -1,0 +1,37 @@
+// Google Benchmark's command line with the benchmark programs' defaults filled in.
+#pragma once
+
+#include <benchmark/benchmark.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace hullcheck::bench {
+
+/// Initializes Google Benchmark from argc/argv, adding --benchmark_min_time (quick_min_time s
+/// in quick mode, else 0.2 s) and, unless quick, --benchmark_repetitions=full_repetitions where
+/// the caller gave none. Returns false when an argument is not recognised (after reporting it).
+inline bool initialize_benchmark(int argc, char** argv, bool quick, double quick_min_time,
+                                 int full_repetitions) {
+  static std::vector<std::string> added;  // the argv entries must outlive the run
+  bool has_min_time = false, has_repetitions = false;
+  for (int i = 1; i < argc; ++i) {
+    has_min_time |= std::strncmp(argv[i], "--benchmark_min_time", 20) == 0;
+    has_repetitions |= std::strncmp(argv[i], "--benchmark_repetitions", 23) == 0;
+  }
+  if (!has_min_time) {
+    added.push_back("--benchmark_min_time=" + std::to_string(quick ? quick_min_time : 0.2));
+  }
+  if (!quick && !has_repetitions) {
+    added.push_back("--benchmark_repetitions=" + std::to_string(full_repetitions));
+  }
+  static std::vector<char*> args;
+  args.assign(argv, argv + argc);
+  for (std::string& a : added) args.push_back(a.data());
+  int bench_argc = static_cast<int>(args.size());
+  benchmark::Initialize(&bench_argc, args.data());
+  return !benchmark::ReportUnrecognizedArguments(bench_argc, args.data());
+}
+
+}  // namespace hullcheck::bench
