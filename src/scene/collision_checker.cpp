@@ -597,36 +597,43 @@ double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q
     }
   }
   if (n_all == 0) return 1.0;
-  // Exact distance of pair i; false when it is within min_clearance.
-  const auto exact = [&](std::size_t i, double* d) {
+  // Signed distance of pair i when below `cutoff` (else a proven lower bound >= cutoff);
+  // false when it is within min_clearance (touching or overlapping).
+  const auto exact = [&](std::size_t i, double cutoff, double* d) {
     if (i < n_env) {
       const EnvironmentPair& p = environment_pairs_[i];
       const RobotShape& rs = shapes_[static_cast<std::size_t>(p.shape)];
       const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
-      *d = distance(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
-                    shape_pose(p.shape, s), o.shape, o.pose)
-               .distance;
+      *d = signed_distance_below(
+               model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
+               shape_pose(p.shape, s), o.shape, o.pose, cutoff)
+               .signed_distance;
     } else {
       const SelfPair& p = self_pairs_[i - n_env];
       const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
       const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
-      *d = distance(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
-                    shape_pose(p.a, s),
-                    model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
-                    shape_pose(p.b, s))
-               .distance;
+      *d = signed_distance_below(
+               model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
+               shape_pose(p.a, s),
+               model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
+               shape_pose(p.b, s), cutoff)
+               .signed_distance;
     }
     return *d > min_clearance;
   };
   double step = std::numeric_limits<double>::infinity();
   double d = 0.0;
-  if (!exact(first, &d)) return -1.0;
+  if (!exact(first, INFINITY, &d)) return -1.0;
   step = d / s.motions[first];
   for (std::size_t i = 0; i < n_all; ++i) {
     if (i == first) continue;
     const double lb = s.lower_bounds[i];
-    if (lb > min_clearance && lb >= step * s.motions[i]) continue;  // cannot limit the step
-    if (!exact(i, &d)) return -1.0;
+    // Distances from `limit` on cannot shorten the step (a pair that does not move cannot).
+    const double limit = s.motions[i] > 0.0 ? step * s.motions[i] : 0.0;
+    if (lb > min_clearance && lb >= limit) continue;
+    // The query may stop at any proof that the distance reaches max(limit, min_clearance)
+    // (a lower bound d >= limit changes nothing below; d <= min_clearance is exact).
+    if (!exact(i, std::max(limit, min_clearance), &d)) return -1.0;
     step = std::min(step, d / s.motions[i]);
   }
   return std::min(step, 1.0);
