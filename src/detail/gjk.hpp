@@ -75,6 +75,11 @@ GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int ma
   if (!(v.squaredNorm() > 0.0)) v = Eigen::Vector3d::UnitX();
   double best_distance_squared = INFINITY;
   double lower = 0.0;
+  // Restarts (see the no-progress case below): the answer kept from before them.
+  constexpr int kMaxRestarts = 2;
+  int restarts = 0;
+  Simplex kept;
+  double kept_distance_squared = INFINITY;
   if (initial != nullptr && initial->size > 0) {
     s = *initial;
     if (!reduce_simplex(s)) {
@@ -118,6 +123,30 @@ GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int ma
     const Eigen::Vector3d next_v = s.closest_point();
     const double next_distance_squared = next_v.squaredNorm();
     if (!(next_distance_squared < best_distance_squared)) {
+      if (std::sqrt(best_distance_squared) - lower > tolerance && restarts < kMaxRestarts &&
+          iteration < max_iterations) {
+        // No progress with the duality gap still open: the simplex has become a sliver whose
+        // closest point no longer improves in double precision (curved cores near contact).
+        // Keep this answer and restart from the newest support point alone, which is still in
+        // slot k (reduce_simplex only writes slots below the sub-simplex size).
+        ++restarts;
+        if (next_distance_squared < kept_distance_squared) {
+          kept = s;
+          kept_distance_squared = next_distance_squared;
+        }
+        if (k != 0) {
+          s.w[0] = s.w[k];
+          s.a[0] = s.a[k];
+          s.b[0] = s.b[k];
+          s.index_a[0] = s.index_a[k];
+          s.index_b[0] = s.index_b[k];
+        }
+        s.lambda[0] = 1.0;
+        s.size = 1;
+        v = s.w[0];
+        best_distance_squared = v.squaredNorm();
+        continue;
+      }
       // No progress in double precision: the answer is the best bound there is. Keep v, the
       // distance and the simplex consistent (the new estimate differs by rounding only).
       if (std::sqrt(best_distance_squared) - lower > tolerance) out.status = Status::kDegenerate;
@@ -133,6 +162,18 @@ GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int ma
     }
     if (goal == GjkGoal::kBoolean && best_distance_squared <= radius * radius) break;
     if (iteration == max_iterations) out.status = Status::kIterationCap;
+  }
+  if (restarts > 0 && !out.cores_overlap && out.status != Status::kAboveCutoff) {
+    if (kept_distance_squared < best_distance_squared) {  // the restarts did not do better
+      s = kept;
+      v = s.closest_point();
+      best_distance_squared = kept_distance_squared;
+    }
+    if (std::sqrt(best_distance_squared) - lower <= tolerance) {
+      out.status = Status::kConverged;
+    } else if (out.status == Status::kConverged) {
+      out.status = Status::kDegenerate;
+    }
   }
   out.v = v;
   out.distance = std::sqrt(best_distance_squared);
