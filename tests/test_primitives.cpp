@@ -246,7 +246,7 @@ namespace {
 // exactly (the box is wide and thick enough that no other direction separates sooner).
 // Curved cores (cylinders, capsules) make GJK converge geometrically near touching contact;
 // whatever the path, the sign must be right (outside the tolerance) and the value within 1e-9 x
-// the larger size when converged.
+// the larger size.
 TEST(NearTouchingOnAFace, SignedDistanceIsTheHeightGap) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -283,10 +283,11 @@ TEST(NearTouchingOnAFace, SignedDistanceIsTheHeightGap) {
     worst = std::max(worst, error / size);
     degenerate += r.status != Status::kConverged ? 1 : 0;
     if (std::abs(gap) > tol && (r.signed_distance > 0.0) != (gap > 0.0)) ++wrong_sign;
-    // Converged answers meet the tolerance; GJK stopped short on a curved core (status says
-    // so) leaves a wider bracket, bounded here by 10x the tolerance.
-    EXPECT_LE(error, r.status == Status::kConverged ? tol : 10 * tol)
-        << i << " gap " << gap << " got " << r.signed_distance << " status " << to_string(r.status);
+    // Every answer meets the tolerance, including those where GJK could not close its duality
+    // gap on a curved core (status kDegenerate / kIterationCap: the lower bound lags, the
+    // distance itself is exact after GJK's restarts).
+    EXPECT_LE(error, tol) << i << " gap " << gap << " got " << r.signed_distance << " status "
+                          << to_string(r.status);
   }
   std::printf(
       "[ touching ] 4000 shapes on a face within 1e-7 x size: worst error %.2e x size, "

@@ -13,12 +13,13 @@ namespace hullcheck {
 ///  - normals and witness points are exact to the same order on flat features (polytopes, box
 ///    faces); where the nearest feature is curved (cylinder rim, sphere, margin) a distance
 ///    exact to eps fixes the direction only to about sqrt(2 eps / curvature radius).
-/// Curved cores (cylinders) converge geometrically; near touching contact GJK may stop at the
-/// iteration cap or at its numerical limit with a bracket wider than the tolerance, which the
-/// result's status reports (kIterationCap, kDegenerate). The sign is still settled: when that
-/// bracket reaches contact, a boolean GJK decides overlap (then EPA gives the depth). Measured
-/// on shapes touching a face (test NearTouchingOnAFace): such answers stay within 10x the
-/// tolerance.
+/// Curved cores (cylinders) converge geometrically. Near touching contact GJK's simplex can
+/// become a sliver that stops improving in double precision; GJK then restarts from its newest
+/// support point (at most 6 times), which brings the distance back within the tolerance, but the
+/// proven lower bound may still lag: such answers carry status kDegenerate (or kIterationCap).
+/// When that bracket reaches contact, a boolean GJK settles the sign (and EPA the depth).
+/// Measured on shapes resting on a face within 1e-7 x size (test NearTouchingOnAFace): every
+/// answer within the tolerance, whatever its status.
 struct QueryOptions {
   /// Convergence tolerance relative to scale (see above). 1e-10 leaves a margin of 10x to
   /// the 1e-9 accuracy the tests check, and is ~1e6 x double precision.

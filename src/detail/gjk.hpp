@@ -76,7 +76,7 @@ GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int ma
   double best_distance_squared = INFINITY;
   double lower = 0.0;
   // Restarts (see the no-progress case below): the answer kept from before them.
-  constexpr int kMaxRestarts = 2;
+  constexpr int kMaxRestarts = 6;
   int restarts = 0;
   Simplex kept;
   double kept_distance_squared = INFINITY;
