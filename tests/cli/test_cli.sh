@@ -147,6 +147,32 @@ expect "benchmark: bad shard" 1 "" "--shard '2/2': expected i/n" -- \
 expect "benchmark: no problems" 1 "" "no sceneNNNN.yaml/requestNNNN.yaml pairs found" -- \
   "$bin" benchmark --robot "$urdf" --problems "$arm/meshes" --log "$tmp/x.log"
 
+# MotionBenchMaker problems (real robots with package:// meshes), when ../shared is present:
+# plan from a request, validate the path, benchmark a list of problems for two robots' worth.
+mbm="${HULLCHECK_SHARED_DIR:-$root/../shared}/benchmarks/mbm"
+if [ -d "$mbm/panda/box_panda" ] && [ -d "$mbm/ur5/table_pick_ur5" ]; then
+  panda=(--robot "$mbm/robots/panda_obj/panda.urdf" --srdf "$mbm/robots/panda_obj/panda.srdf")
+  expect "MBM Panda: plan from a MotionPlanRequest" 0 "solved in" "" -- \
+    "$bin" plan "${panda[@]}" --scene "$mbm/panda/box_panda/scene0001.yaml" \
+    --request "$mbm/panda/box_panda/request0001.yaml" --time 10 --simplify --out "$tmp/mbm.csv"
+  expect "MBM Panda: validate the planned path" 0 "path VALID" "" -- \
+    "$bin" validate "${panda[@]}" --scene "$mbm/panda/box_panda/scene0001.yaml" \
+    --path "$tmp/mbm.csv"
+  printf '# two UR5 problems\n%s %s\n%s %s\n' \
+    "$mbm/ur5/table_pick_ur5/scene0001.yaml" "$mbm/ur5/table_pick_ur5/request0001.yaml" \
+    "$mbm/ur5/box_ur5/scene0001.yaml" "$mbm/ur5/box_ur5/request0001.yaml" >"$tmp/ur5.list"
+  expect "MBM UR5: benchmark a problem list" 0 "benchmark: 2 runs, 2 solved" "\\[2/2 problems\\]" -- \
+    "$bin" benchmark --robot "$mbm/robots/ur5_robotiq85/ur5.urdf" \
+    --srdf "$mbm/robots/ur5_robotiq85/ur5.srdf" --problems "$tmp/ur5.list" --time 10 \
+    --log "$tmp/ur5.log"
+  if command -v ompl_benchmark_statistics >/dev/null; then
+    expect "MBM UR5: ompl_benchmark_statistics reads the log" 0 "" "" -- \
+      ompl_benchmark_statistics "$tmp/ur5.log" -d "$tmp/ur5.db"
+  fi
+else
+  echo "skip MotionBenchMaker checks (no $mbm)"
+fi
+
 if [ "$failures" != 0 ]; then
   echo "$failures CLI check(s) failed"
   exit 1
