@@ -4,9 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <hullcheck/robot/robot_model.hpp>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -92,6 +96,36 @@ inline std::string read_text(const std::string& path) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+/// Uniform in the limits of `variables` (continuous joints in [-pi, pi]); the other values
+/// from `base`.
+inline Eigen::VectorXd random_configuration(const RobotModel& model, const Eigen::VectorXd& base,
+                                            const std::vector<int>& variables,
+                                            std::mt19937_64& rng) {
+  const Eigen::VectorXd lo = model.lower_limits();
+  const Eigen::VectorXd hi = model.upper_limits();
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Eigen::VectorXd q = base;
+  for (int i : variables) {
+    const double a = std::isfinite(lo[i]) ? lo[i] : -M_PI;
+    const double b = std::isfinite(hi[i]) ? hi[i] : M_PI;
+    q[i] = a + (b - a) * unit(rng);
+  }
+  return q;
+}
+
+/// Every configuration value's index.
+inline std::vector<int> all_variables(const RobotModel& model) {
+  std::vector<int> v(static_cast<std::size_t>(model.variable_count()));
+  for (int i = 0; i < model.variable_count(); ++i) v[static_cast<std::size_t>(i)] = i;
+  return v;
+}
+
+/// Uniform in the joint limits (continuous joints in [-pi, pi]), every value drawn.
+inline Eigen::VectorXd random_configuration(const RobotModel& model, std::mt19937_64& rng) {
+  return random_configuration(model, Eigen::VectorXd::Zero(model.variable_count()),
+                              all_variables(model), rng);
 }
 
 }  // namespace hullcheck::test

@@ -104,28 +104,4 @@ inline std::shared_ptr<const RobotModel> cached_model(const std::string& urdf) {
   return model;
 }
 
-/// Uniform in the limits of `variables` (continuous joints in [-pi, pi]); the other values
-/// from `base`.
-inline Eigen::VectorXd random_configuration(const RobotModel& model, const Eigen::VectorXd& base,
-                                            const std::vector<int>& variables,
-                                            std::mt19937_64& rng) {
-  const Eigen::VectorXd lo = model.lower_limits();
-  const Eigen::VectorXd hi = model.upper_limits();
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  Eigen::VectorXd q = base;
-  for (int i : variables) {
-    const double a = std::isfinite(lo[i]) ? lo[i] : -M_PI;
-    const double b = std::isfinite(hi[i]) ? hi[i] : M_PI;
-    q[i] = a + (b - a) * unit(rng);
-  }
-  return q;
-}
-
-/// Every configuration value's index.
-inline std::vector<int> all_variables(const RobotModel& model) {
-  std::vector<int> v(static_cast<std::size_t>(model.variable_count()));
-  for (int i = 0; i < model.variable_count(); ++i) v[static_cast<std::size_t>(i)] = i;
-  return v;
-}
-
 }  // namespace hullcheck::test

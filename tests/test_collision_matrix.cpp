@@ -77,18 +77,7 @@ std::shared_ptr<const RobotModel> load_string(const std::string& xml) {
       RobotModel::from_urdf_string(xml, ".", {}, "constructed.urdf"));
 }
 
-Eigen::VectorXd random_configuration(const RobotModel& model, std::mt19937_64& rng) {
-  const Eigen::VectorXd lo = model.lower_limits();
-  const Eigen::VectorXd hi = model.upper_limits();
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  Eigen::VectorXd q(model.variable_count());
-  for (int i = 0; i < q.size(); ++i) {
-    const double a = std::isfinite(lo[i]) ? lo[i] : -M_PI;
-    const double b = std::isfinite(hi[i]) ? hi[i] : M_PI;
-    q[i] = a + (b - a) * unit(rng);
-  }
-  return q;
-}
+using test::random_configuration;
 
 // ---------------------------------------------------------------- the matrix itself
 

@@ -31,18 +31,7 @@ const std::vector<std::string> kUrJoints = {"shoulder_pan_joint", "shoulder_lift
                                             "elbow_joint",        "wrist_1_joint",
                                             "wrist_2_joint",      "wrist_3_joint"};
 
-// Uniform in the joint limits; continuous joints in [-pi, pi).
-Eigen::VectorXd random_configuration(const RobotModel& model, std::mt19937_64& rng) {
-  const Eigen::VectorXd lo = model.lower_limits(), hi = model.upper_limits();
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  Eigen::VectorXd q(model.variable_count());
-  for (int i = 0; i < q.size(); ++i) {
-    const double a = std::isfinite(lo[i]) ? lo[i] : -M_PI;
-    const double b = std::isfinite(hi[i]) ? hi[i] : M_PI;
-    q[i] = a + (b - a) * unit(rng);
-  }
-  return q;
-}
+using test::random_configuration;
 
 // The wrapped angle: in [-pi, pi) and equal to `a` modulo 2 pi (up to the rounding of 2 pi,
 // which grows with |a|).
