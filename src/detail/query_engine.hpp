@@ -128,7 +128,8 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   const Eigen::Vector3d centres =
       core_a.center() - rotation_a_t * (pose_b.linear() * core_b.center() + offset_world);
   const double centres_squared = centres.squaredNorm();
-  const bool has_cutoff = kind == QueryKind::kSignedDistance && cutoff < INFINITY;
+  if (kind != QueryKind::kSignedDistance) cutoff = INFINITY;  // only signed distances have one
+  const bool has_cutoff = cutoff < INFINITY;
   if (has_cutoff) {
     // The balls around the cores bound the signed distance from below.
     const double outer = core_a.outer_radius() + core_b.outer_radius() + radius;
@@ -219,17 +220,15 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
       Simplex simplex = enclosing_simplex(tetrahedron);
       Answer answer;
       answer.iterations = boolean_iterations;
-      add_penetration(md, simplex, radius_a, radius_b, pose_a, tolerance, options, answer,
-                      has_cutoff ? cutoff : INFINITY);
+      add_penetration(md, simplex, radius_a, radius_b, pose_a, tolerance, options, answer, cutoff);
       return answer;
     }
   }
   const GjkGoal goal = kind == QueryKind::kIntersect     ? GjkGoal::kBoolean
                        : kind == QueryKind::kPenetration ? GjkGoal::kPenetration
                                                          : GjkGoal::kDistance;
-  const GjkOutput g =
-      gjk(md, v0, radius, tolerance, options.max_gjk_iterations, goal,
-          warm_simplex.size > 0 ? &warm_simplex : nullptr, has_cutoff ? cutoff + radius : INFINITY);
+  const GjkOutput g = gjk(md, v0, radius, tolerance, options.max_gjk_iterations, goal,
+                          warm_simplex.size > 0 ? &warm_simplex : nullptr, cutoff + radius);
 
   Answer answer;
   answer.iterations = g.iterations;
@@ -269,8 +268,7 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
         overlap.point_a = overlap.point_b = pose_a * simplex.point_a();
         return overlap;
       }
-      add_penetration(md, simplex, radius_a, radius_b, pose_a, tolerance, options, overlap,
-                      has_cutoff ? cutoff : INFINITY);
+      add_penetration(md, simplex, radius_a, radius_b, pose_a, tolerance, options, overlap, cutoff);
       return overlap;
     }
   }
@@ -314,8 +312,7 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
     answer.point_a = answer.point_b = pose_a * g.simplex.point_a();
     return answer;
   }
-  add_penetration(md, g.simplex, radius_a, radius_b, pose_a, tolerance, options, answer,
-                  has_cutoff ? cutoff : INFINITY);
+  add_penetration(md, g.simplex, radius_a, radius_b, pose_a, tolerance, options, answer, cutoff);
   return answer;
 }
 

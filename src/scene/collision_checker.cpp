@@ -369,6 +369,26 @@ bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_po
   return true;
 }
 
+SignedDistanceResult CollisionChecker::pair_distance_below(std::size_t i, double cutoff,
+                                                           Scratch& s) const {
+  const std::size_t n_env = environment_pairs_.size();
+  if (i < n_env) {
+    const EnvironmentPair& p = environment_pairs_[i];
+    const RobotShape& rs = shapes_[static_cast<std::size_t>(p.shape)];
+    const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
+    return signed_distance_below(
+        model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
+        shape_pose(p.shape, s), o.shape, o.pose, cutoff);
+  }
+  const SelfPair& p = self_pairs_[i - n_env];
+  const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
+  const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
+  return signed_distance_below(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
+                               shape_pose(p.a, s),
+                               model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
+                               shape_pose(p.b, s), cutoff);
+}
+
 ClearanceResult CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   model_->check_configuration(q);
   Scratch& s = scratch();
@@ -485,52 +505,38 @@ ClearanceResult CollisionChecker::clearance_at(
   }
   const auto evaluate = [&](std::size_t i) {
     ++best.exact_queries;
+    const SignedDistanceResult r = pair_distance_below(i, best.distance, s);
+    if (r.status == Status::kAboveCutoff || !(r.signed_distance < best.distance)) return;
+    best.distance = r.signed_distance;
+    best.point_a = r.point_a;
+    best.point_b = r.point_b;
+    best.normal = r.normal;
+    best.status = r.status;
     if (i < n_env) {
       const EnvironmentPair& p = environment_pairs_[i];
       const RobotShape& rs = shapes_[static_cast<std::size_t>(p.shape)];
-      const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
-      const SignedDistanceResult r = signed_distance_below(
-          model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
-          shape_pose(p.shape, s), o.shape, o.pose, best.distance);
-      if (r.status != Status::kAboveCutoff && r.signed_distance < best.distance) {
-        best.distance = r.signed_distance;
-        best.self = false;
-        best.link_a = rs.link;
-        best.shape_a = rs.shape;
-        best.link_b = best.shape_b = -1;
-        best.obstacle = p.obstacle;
-        best.name_a = rs.link_name;
-        best.name_b = o.name;
-        best.point_a = r.point_a;
-        best.point_b = r.point_b;
-        best.normal = r.normal;
-        best.status = r.status;
-      }
+      best.self = false;
+      best.link_a = rs.link;
+      best.shape_a = rs.shape;
+      best.link_b = best.shape_b = -1;
+      best.obstacle = p.obstacle;
+      best.name_a = rs.link_name;
+      best.name_b = scene_.obstacles[static_cast<std::size_t>(p.obstacle)].name;
     } else {
       const SelfPair& p = self_pairs_[i - n_env];
       const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
       const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
-      const SignedDistanceResult r = signed_distance_below(
-          model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape, shape_pose(p.a, s),
-          model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape, shape_pose(p.b, s),
-          best.distance);
-      if (r.status != Status::kAboveCutoff && r.signed_distance < best.distance) {
-        best.distance = r.signed_distance;
-        best.self = true;
-        best.link_a = a.link;
-        best.shape_a = a.shape;
-        best.link_b = b.link;
-        best.shape_b = b.shape;
-        best.obstacle = -1;
-        best.name_a = a.link_name;
-        best.name_b = b.link_name;
-        best.point_a = r.point_a;
-        best.point_b = r.point_b;
-        best.normal = r.normal;
-        best.status = r.status;
-      }
+      best.self = true;
+      best.link_a = a.link;
+      best.shape_a = a.shape;
+      best.link_b = b.link;
+      best.shape_b = b.shape;
+      best.obstacle = -1;
+      best.name_a = a.link_name;
+      best.name_b = b.link_name;
     }
   };
+
   // Exact signed distances in the order of the lower bounds, until a bound reaches the best;
   // each query stops as soon as it proves its pair no closer than the best so far (on a
   // colliding state, a separated pair costs a boolean test and a shallow one a few EPA steps).
@@ -600,27 +606,10 @@ double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q
   // Signed distance of pair i when below `cutoff` (else a proven lower bound >= cutoff);
   // false when it is within min_clearance (touching or overlapping).
   const auto exact = [&](std::size_t i, double cutoff, double* d) {
-    if (i < n_env) {
-      const EnvironmentPair& p = environment_pairs_[i];
-      const RobotShape& rs = shapes_[static_cast<std::size_t>(p.shape)];
-      const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
-      *d = signed_distance_below(
-               model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
-               shape_pose(p.shape, s), o.shape, o.pose, cutoff)
-               .signed_distance;
-    } else {
-      const SelfPair& p = self_pairs_[i - n_env];
-      const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
-      const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
-      *d = signed_distance_below(
-               model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
-               shape_pose(p.a, s),
-               model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
-               shape_pose(p.b, s), cutoff)
-               .signed_distance;
-    }
+    *d = pair_distance_below(i, cutoff, s).signed_distance;
     return *d > min_clearance;
   };
+
   double step = std::numeric_limits<double>::infinity();
   double d = 0.0;
   if (!exact(first, INFINITY, &d)) return -1.0;

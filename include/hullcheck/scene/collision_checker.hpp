@@ -117,6 +117,9 @@ class CollisionChecker {
   Scratch& scratch() const;
   void place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const;
   const Eigen::Isometry3d& shape_pose(int shape, Scratch& s) const;
+  /// signed_distance_below(cutoff) of checked pair i (environment pairs first, then self pairs)
+  /// at the shape poses of the current query.
+  SignedDistanceResult pair_distance_below(std::size_t i, double cutoff, Scratch& s) const;
   double box_gap(const ObstacleBox& box, const Eigen::Vector3d& c, double radius,
                  Eigen::Vector3d* direction = nullptr) const;
   /// Extra motion bound (m) over the straight motion q0 -> q1 from prismatic values beyond the
