@@ -308,38 +308,45 @@ struct Group {
   Figures hc, fcl;
 };
 
+// A checker's figures over the problems of `rows` that have a valid start and goal (all but
+// median_time_both, which needs both checkers).
+Figures checker_figures(const std::vector<const Row*>& rows) {
+  Figures f;
+  std::vector<double> times, per_check;
+  for (const Row* row : rows) {
+    if (!row->valid) continue;
+    ++f.valid;
+    f.solved += row->solved ? 1 : 0;
+    f.paths_invalid += row->path_valid == 0 ? 1 : 0;
+    f.total_time += row->time;
+    times.push_back(row->time);
+    if (row->checks > 0) per_check.push_back(1e6 * row->time / row->checks);
+  }
+  f.median_time = median(times);
+  f.median_check_us = median(per_check);
+  return f;
+}
+
 Group summarize_group(const std::string& name, const std::vector<const Row*>& hc_rows,
                       const std::vector<const Row*>& fcl_rows) {
   Group g;
   g.name = name;
   g.problems = static_cast<int>(hc_rows.size());
-  std::vector<double> t_hc, t_fcl, both_hc, both_fcl, c_hc, c_fcl;
+  g.hc = checker_figures(hc_rows);
+  g.fcl = checker_figures(fcl_rows);
+  g.valid = g.hc.valid;
+  std::vector<double> both_hc, both_fcl;
   for (std::size_t i = 0; i < hc_rows.size(); ++i) {
     const Row& h = *hc_rows[i];
     const Row& f = *fcl_rows[i];
     g.disagreements += h.fcl_agrees ? 0 : 1;
-    if (!h.valid) continue;
-    ++g.valid;
-    for (const auto& [row, fig, times, per_check] :
-         {std::make_tuple(&h, &g.hc, &t_hc, &c_hc), std::make_tuple(&f, &g.fcl, &t_fcl, &c_fcl)}) {
-      ++fig->valid;
-      fig->solved += row->solved ? 1 : 0;
-      fig->paths_invalid += row->path_valid == 0 ? 1 : 0;
-      fig->total_time += row->time;
-      times->push_back(row->time);
-      if (row->checks > 0) per_check->push_back(1e6 * row->time / row->checks);
-    }
-    if (h.solved && f.solved) {
+    if (h.valid && h.solved && f.solved) {
       both_hc.push_back(h.time);
       both_fcl.push_back(f.time);
     }
   }
-  g.hc.median_time = median(t_hc);
-  g.fcl.median_time = median(t_fcl);
   g.hc.median_time_both = median(both_hc);
   g.fcl.median_time_both = median(both_fcl);
-  g.hc.median_check_us = median(c_hc);
-  g.fcl.median_check_us = median(c_fcl);
   return g;
 }
 
@@ -412,18 +419,10 @@ void summarize(const std::vector<std::string>& files, const std::string& table_f
          "\n\n| robot | valid start/goal | solved | median solve (ms) | paths failing the "
          "guaranteed re-check |\n|---|---|---|---|---|\n";
     for (const auto& [robot, list] : guaranteed) {
-      int valid = 0, solved = 0, invalid = 0;
-      std::vector<double> times;
-      for (const Row* r : list) {
-        if (!r->valid) continue;
-        ++valid;
-        solved += r->solved ? 1 : 0;
-        invalid += r->path_valid == 0 ? 1 : 0;
-        times.push_back(r->time);
-      }
-      t << "| " << robot << " | " << valid << " | " << solved << " ("
-        << ratio(100.0 * solved, valid) << "%) | " << ms(median(times)) << " | " << invalid
-        << " |\n";
+      const Figures f = checker_figures(list);
+      t << "| " << robot << " | " << f.valid << " | " << f.solved << " ("
+        << ratio(100.0 * f.solved, f.valid) << "%) | " << ms(f.median_time) << " | "
+        << f.paths_invalid << " |\n";
     }
   }
   int disagreements = 0;
