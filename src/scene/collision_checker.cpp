@@ -72,8 +72,8 @@ struct CollisionChecker::Scratch {
   const std::vector<Eigen::Isometry3d>* link_poses_in = nullptr;  // of the current query
   std::vector<Eigen::Vector3d> group_centers;
   std::vector<double> group_radii;
-  std::vector<std::pair<double, int>> candidates;  // clearance: (lower bound, pair)
-  std::vector<std::pair<double, int>> nearest;     // clearance: (ball bound, pair)
+  std::vector<std::pair<double, int>> candidates;  // clearance: queue of (lower bound, code)
+  std::vector<std::pair<double, int>> nearest;     // clearance: (ball bound, code)
 };
 
 CollisionChecker::Scratch& CollisionChecker::scratch() const {
@@ -403,15 +403,45 @@ ClearanceResult CollisionChecker::clearance_at(
   ClearanceResult best;
   const std::size_t n_env = environment_pairs_.size();
   if (n_env + self_pairs_.size() == 0) return best;
-  // Candidates: pairs whose lower bound on the signed distance is below `cut`, an upper bound
-  // on the minimum (the distance between two points of some pair's shapes). A pair whose lower
-  // bound reaches the cut cannot be closer than that pair, so it is dropped. Lower bounds:
-  // bounding balls (and, for a group of shapes, the group's ball), then, for the pairs they
-  // leave, the slab between the shapes' supporting planes along the balls' direction, taken
-  // nearest ball first so that the cut tightens early. Self pairs first: on arms they are
-  // often the closest, which sets a low cut for the obstacles.
+  // Best-first search over the pairs by lower bounds on their signed distance, refined lazily:
+  // bounding balls (and, for a group of shapes, the group's ball) for every pair, the slab
+  // between the shapes' supporting planes along the balls' direction only for a pair that
+  // comes first with its ball bound, and the exact signed distance only for a pair that comes
+  // first with its slab bound. `cut` is an upper bound on the minimum (the distance between
+  // two points of some pair's shapes, from the slabs): a pair whose bound exceeds it cannot be
+  // the closest. The search ends when the smallest bound left reaches the best exact value.
+  // Queue entries: (lower bound, 2 * pair + 1 once the slab bound is in).
   double cut = std::numeric_limits<double>::infinity();
-  s.candidates.clear();
+  // Slab bound of pair i whose ball bound is `ball`: the refined lower bound; tightens the cut.
+  const auto refine = [&](std::size_t i, double ball) {
+    double slab, upper;
+    if (i < n_env) {
+      const EnvironmentPair& p = environment_pairs_[i];
+      const RobotShape& rs = shapes_[static_cast<std::size_t>(p.shape)];
+      const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
+      Eigen::Vector3d towards_shape;
+      box_gap(boxes_[static_cast<std::size_t>(p.obstacle)],
+              s.centers[static_cast<std::size_t>(p.shape)], rs.radius, &towards_shape);
+      slab_bounds(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
+                  shape_pose(p.shape, s), o.shape, o.pose, -towards_shape, &slab, &upper);
+    } else {
+      const SelfPair& p = self_pairs_[i - n_env];
+      const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
+      const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
+      const Eigen::Vector3d ab =
+          s.centers[static_cast<std::size_t>(p.b)] - s.centers[static_cast<std::size_t>(p.a)];
+      const double centres = ab.norm();
+      if (!(centres > 0.0)) return ball;  // concentric balls: no direction, no slab
+      slab_bounds(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
+                  shape_pose(p.a, s),
+                  model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
+                  shape_pose(p.b, s), ab / centres, &slab, &upper);
+    }
+    cut = std::min(cut, upper);
+    return std::max(ball, slab);
+  };
+  // Ball bounds of the self pairs; the nearest is refined at once: its slab sets a first cut
+  // that culls most obstacle pairs (on arms the closest pair is often a self pair).
   s.nearest.clear();
   for (std::size_t k = 0; k < self_pairs_.size(); ++k) {
     const SelfPair& p = self_pairs_[k];
@@ -420,40 +450,16 @@ ClearanceResult CollisionChecker::clearance_at(
                 .norm() -
             shapes_[static_cast<std::size_t>(p.a)].radius -
             shapes_[static_cast<std::size_t>(p.b)].radius,
-        static_cast<int>(k));
+        2 * static_cast<int>(n_env + k));
   }
-  // The nearest first (it sets the cut), then the others still below the cut, in order.
-  const auto add_self = [&](double ball, int k) {
-    const SelfPair& p = self_pairs_[static_cast<std::size_t>(k)];
-    const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
-    const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
-    const Eigen::Vector3d ab =
-        s.centers[static_cast<std::size_t>(p.b)] - s.centers[static_cast<std::size_t>(p.a)];
-    const double centres = ab.norm();
-    double lb = ball;
-    if (centres > 0.0) {
-      double slab, upper;
-      slab_bounds(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
-                  shape_pose(p.a, s),
-                  model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
-                  shape_pose(p.b, s), ab / centres, &slab, &upper);
-      lb = std::max(lb, slab);
-      if (lb >= cut) return;
-      cut = std::min(cut, upper);
-    }
-    s.candidates.emplace_back(lb, static_cast<int>(n_env) + k);
+  const auto refine_nearest = [&](std::size_t from) {
+    if (s.nearest.size() <= from) return;
+    const auto it =
+        std::min_element(s.nearest.begin() + static_cast<std::ptrdiff_t>(from), s.nearest.end());
+    it->first = refine(static_cast<std::size_t>(it->second / 2), it->first);
+    it->second |= 1;
   };
-  if (!s.nearest.empty()) {
-    std::iter_swap(s.nearest.begin(), std::min_element(s.nearest.begin(), s.nearest.end()));
-    add_self(s.nearest.front().first, s.nearest.front().second);
-    const auto below =
-        std::remove_if(s.nearest.begin() + 1, s.nearest.end(),
-                       [&](const std::pair<double, int>& e) { return e.first >= cut; });
-    std::sort(s.nearest.begin() + 1, below);
-    for (auto it = s.nearest.begin() + 1; it != below && it->first < cut; ++it) {
-      add_self(it->first, it->second);
-    }
-  }
+  refine_nearest(0);
   // box_gap(box, c, radius) when it is below the cut; the square root only then.
   const auto ball_below_cut = [](const ObstacleBox& box, const Eigen::Vector3d& c, double radius,
                                  double cut_now, double* gap) {
@@ -469,7 +475,7 @@ ClearanceResult CollisionChecker::clearance_at(
     }
     return *gap < cut_now;
   };
-  s.nearest.clear();
+  const std::size_t environment_begin = s.nearest.size();
   for (const EnvironmentBlock& block : blocks_) {
     const ObstacleBox& box = boxes_[static_cast<std::size_t>(block.obstacle)];
     const auto g = static_cast<std::size_t>(block.group);
@@ -482,27 +488,21 @@ ClearanceResult CollisionChecker::clearance_at(
       const int shape = environment_pairs_[static_cast<std::size_t>(i)].shape;
       if (ball_below_cut(box, s.centers[static_cast<std::size_t>(shape)],
                          shapes_[static_cast<std::size_t>(shape)].radius, cut, &ball)) {
-        s.nearest.emplace_back(ball, i);
+        s.nearest.emplace_back(ball, 2 * i);
       }
     }
   }
-  std::sort(s.nearest.begin(), s.nearest.end());
-  for (const auto& [ball, i] : s.nearest) {
-    if (ball >= cut) break;
-    const EnvironmentPair& p = environment_pairs_[static_cast<std::size_t>(i)];
-    const RobotShape& rs = shapes_[static_cast<std::size_t>(p.shape)];
-    const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
-    Eigen::Vector3d towards_shape;
-    box_gap(boxes_[static_cast<std::size_t>(p.obstacle)],
-            s.centers[static_cast<std::size_t>(p.shape)], rs.radius, &towards_shape);
-    double slab, upper;
-    slab_bounds(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
-                shape_pose(p.shape, s), o.shape, o.pose, -towards_shape, &slab, &upper);
-    const double lb = std::max(ball, slab);
-    if (lb >= cut) continue;
-    cut = std::min(cut, upper);
-    s.candidates.emplace_back(lb, i);
+  refine_nearest(environment_begin);  // the nearest obstacle pair tightens the cut in turn
+  // The queue: a binary heap, smallest bound on top (ties by pair: deterministic).
+  auto& queue = s.candidates;
+  queue.clear();
+  for (const auto& entry : s.nearest) {
+    if (entry.first <= cut) queue.push_back(entry);
   }
+  const auto later = [](const std::pair<double, int>& x, const std::pair<double, int>& y) {
+    return x > y;
+  };
+  std::make_heap(queue.begin(), queue.end(), later);
   const auto evaluate = [&](std::size_t i) {
     ++best.exact_queries;
     const SignedDistanceResult r = pair_distance_below(i, best.distance, s);
@@ -537,13 +537,24 @@ ClearanceResult CollisionChecker::clearance_at(
     }
   };
 
-  // Exact signed distances in the order of the lower bounds, until a bound reaches the best;
-  // each query stops as soon as it proves its pair no closer than the best so far (on a
+  // Each exact query stops as soon as it proves its pair no closer than the best so far (on a
   // colliding state, a separated pair costs a boolean test and a shallow one a few EPA steps).
-  std::sort(s.candidates.begin(), s.candidates.end());
-  for (const auto& [lb, i] : s.candidates) {
-    if (lb >= best.distance) break;
-    evaluate(static_cast<std::size_t>(i));
+  while (!queue.empty()) {
+    std::pop_heap(queue.begin(), queue.end(), later);
+    const auto [bound, code] = queue.back();
+    queue.pop_back();
+    // Strictly above the cut: the pair that set the cut has a bound at most the cut and is
+    // still queued or evaluated.
+    if (bound >= best.distance || bound > cut) break;
+    const auto i = static_cast<std::size_t>(code / 2);
+    if (code % 2 == 1) {
+      evaluate(i);
+      continue;
+    }
+    const double refined = refine(i, bound);
+    if (refined >= best.distance || refined > cut) continue;
+    queue.emplace_back(refined, code | 1);
+    std::push_heap(queue.begin(), queue.end(), later);
   }
   return best;
 }
