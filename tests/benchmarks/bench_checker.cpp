@@ -371,32 +371,27 @@ void print_table(std::ostream& out, const Options& o, const std::string& command
 
 Options parse_options(int& argc, char** argv) {
   Options o;
-  const char* env = std::getenv("HULLCHECK_SHARED_DIR");
-  o.shared_dir = env != nullptr && *env != '\0' ? env : HULLCHECK_SHARED_DIR;
-  int kept = 1;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--quick") {
-      o.quick = true;
-      o.scenes = 1;
-      o.states = 8;
-    } else if (arg.rfind("--scenes=", 0) == 0) {
-      o.scenes = std::atoi(arg.c_str() + 9);
-    } else if (arg.rfind("--states=", 0) == 0) {
-      o.states = std::atoi(arg.c_str() + 9);
-    } else if (arg.rfind("--table=", 0) == 0) {
-      o.table_file = arg.substr(8);
-    } else if (arg == "--help" || arg == "-h") {
-      std::cout << "bench_checker [--quick] [--scenes=N] [--states=N] [--table=FILE] "
-                   "[benchmark flags]\n  HULLCHECK_SHARED_DIR: directory with benchmarks/mbm "
-                   "(default "
-                << HULLCHECK_SHARED_DIR << ")\n";
-      std::exit(0);
-    } else {
-      argv[kept++] = argv[i];
-    }
-  }
-  argc = kept;
+  o.shared_dir = hullcheck::bench::shared_dir();
+  hullcheck::bench::take_program_flags(
+      argc, argv,
+      "bench_checker [--quick] [--scenes=N] [--states=N] [--table=FILE] [benchmark flags]\n"
+      "  HULLCHECK_SHARED_DIR: directory with benchmarks/mbm",
+      [&o](const std::string& arg) {
+        if (arg == "--quick") {
+          o.quick = true;
+          o.scenes = 1;
+          o.states = 8;
+        } else if (arg.rfind("--scenes=", 0) == 0) {
+          o.scenes = std::atoi(arg.c_str() + 9);
+        } else if (arg.rfind("--states=", 0) == 0) {
+          o.states = std::atoi(arg.c_str() + 9);
+        } else if (arg.rfind("--table=", 0) == 0) {
+          o.table_file = arg.substr(8);
+        } else {
+          return false;
+        }
+        return true;
+      });
   return o;
 }
 

@@ -39,10 +39,6 @@
 #include "benchmark_flags.hpp"
 #include "peers.hpp"
 
-#ifndef HULLCHECK_SHARED_DIR
-#define HULLCHECK_SHARED_DIR "../shared"
-#endif
-
 namespace hb = hullcheck::bench;
 
 namespace {
@@ -561,29 +557,24 @@ void print_hullcheck_worst(std::ostream& out, const std::vector<hb::DataSet>& se
 
 Options parse_options(int& argc, char** argv) {
   Options o;
-  const char* env = std::getenv("HULLCHECK_SHARED_DIR");
-  o.shared_dir = env != nullptr && *env != '\0' ? env : HULLCHECK_SHARED_DIR;
-  int kept = 1;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--quick") {
-      o.quick = true;
-    } else if (arg == "--no-robots") {
-      o.robots = false;
-    } else if (arg.rfind("--pairs=", 0) == 0) {
-      o.pairs = std::atoi(arg.c_str() + 8);
-    } else if (arg.rfind("--table=", 0) == 0) {
-      o.table_file = arg.substr(8);
-    } else if (arg == "--help" || arg == "-h") {
-      std::cout << "bench_core [--quick] [--no-robots] [--pairs=N] [--table=FILE] "
-                   "[benchmark flags]\n  HULLCHECK_SHARED_DIR: directory with robots/ (default "
-                << HULLCHECK_SHARED_DIR << ")\n";
-      std::exit(0);
-    } else {
-      argv[kept++] = argv[i];
-    }
-  }
-  argc = kept;
+  o.shared_dir = hb::shared_dir();
+  hb::take_program_flags(argc, argv,
+                         "bench_core [--quick] [--no-robots] [--pairs=N] [--table=FILE] "
+                         "[benchmark flags]\n  HULLCHECK_SHARED_DIR: directory with robots/",
+                         [&o](const std::string& arg) {
+                           if (arg == "--quick") {
+                             o.quick = true;
+                           } else if (arg == "--no-robots") {
+                             o.robots = false;
+                           } else if (arg.rfind("--pairs=", 0) == 0) {
+                             o.pairs = std::atoi(arg.c_str() + 8);
+                           } else if (arg.rfind("--table=", 0) == 0) {
+                             o.table_file = arg.substr(8);
+                           } else {
+                             return false;
+                           }
+                           return true;
+                         });
   return o;
 }
 

@@ -1,13 +1,44 @@
-// Google Benchmark's command line with the benchmark programs' defaults filled in.
+// The benchmark programs' command lines: their own flags, the ../shared directory, and Google
+// Benchmark's flags with the programs' defaults filled in.
 #pragma once
 
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <cstring>
+#include <iostream>
 #include <string>
 #include <vector>
 
+#ifndef HULLCHECK_SHARED_DIR
+#define HULLCHECK_SHARED_DIR "../shared"
+#endif
+
 namespace hullcheck::bench {
+
+/// The test-data directory: $HULLCHECK_SHARED_DIR when set and not empty, else the build's
+/// default (HULLCHECK_SHARED_DIR).
+inline std::string shared_dir() {
+  const char* env = std::getenv("HULLCHECK_SHARED_DIR");
+  return env != nullptr && *env != '\0' ? env : HULLCHECK_SHARED_DIR;
+}
+
+/// Takes a program's own flags out of argv, leaving the others (Google Benchmark's) in order
+/// for initialize_benchmark. `take(arg)` returns true when it consumed `arg`; --help or -h
+/// prints `usage` and the shared-directory default, then exits.
+template <class Take>
+void take_program_flags(int& argc, char** argv, const std::string& usage, Take take) {
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      std::cout << usage << " (default " << HULLCHECK_SHARED_DIR << ")\n";
+      std::exit(0);
+    }
+    if (!take(arg)) argv[kept++] = argv[i];
+  }
+  argc = kept;
+}
 
 /// Initializes Google Benchmark from argc/argv, adding --benchmark_min_time (quick_min_time s
 /// in quick mode, else 0.2 s) and, unless quick, --benchmark_repetitions=full_repetitions where
