@@ -6,6 +6,8 @@
 #include <hullcheck/scene/collision_checker.hpp>
 #include <map>
 
+#include "../detail/query_engine.hpp"
+
 namespace hullcheck {
 namespace {
 
@@ -70,6 +72,7 @@ struct CollisionChecker::Scratch {
   std::vector<std::uint64_t> posed;
   std::uint64_t stamp = 0;
   const std::vector<Eigen::Isometry3d>* link_poses_in = nullptr;  // of the current query
+  const double* q = nullptr;  // configuration of the current query, when it has one
   std::vector<Eigen::Vector3d> group_centers;
   std::vector<double> group_radii;
   std::vector<std::pair<double, int>> candidates;  // clearance: queue of (lower bound, code)
@@ -251,6 +254,7 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
       self_pair_levers_(static_cast<Eigen::Index>(p), v) += m * arm(ji, above_a ? a : b);
     }
   }
+  build_warm_start_grids();
 }
 
 void CollisionChecker::place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const {
@@ -260,6 +264,7 @@ void CollisionChecker::place(const std::vector<Eigen::Isometry3d>& link_poses, S
                      std::to_string(model_->links().size()) + " links");
   }
   s.link_poses_in = &link_poses;
+  s.q = nullptr;
   ++s.stamp;
   for (std::size_t i = 0; i < shapes_.size(); ++i) {
     const RobotShape& rs = shapes_[i];
@@ -383,6 +388,15 @@ SignedDistanceResult CollisionChecker::pair_distance_below(std::size_t i, double
   const SelfPair& p = self_pairs_[i - n_env];
   const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
   const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
+  const WarmStartGrid& grid = warm_grids_[i - n_env];
+  if (grid.dims >= 0 && s.q != nullptr) {
+    // Poses from forward kinematics of a checked configuration: finite.
+    detail::WarmStart warm = grid.at(s.q);
+    return detail::to_signed_distance_result(detail::query(
+        model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape, shape_pose(p.a, s),
+        model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape, shape_pose(p.b, s),
+        detail::QueryKind::kSignedDistance, QueryOptions{}, &warm, cutoff));
+  }
   return signed_distance_below(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
                                shape_pose(p.a, s),
                                model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
@@ -393,13 +407,19 @@ ClearanceResult CollisionChecker::clearance(const Eigen::Ref<const Eigen::Vector
   model_->check_configuration(q);
   Scratch& s = scratch();
   model_->compute_link_poses_unchecked(q.data(), s.link_poses.data());
-  return clearance_at(s.link_poses);
+  place(s.link_poses, s);
+  s.q = q.data();
+  return nearest_pair(s);
 }
 
 ClearanceResult CollisionChecker::clearance_at(
     const std::vector<Eigen::Isometry3d>& link_poses) const {
   Scratch& s = scratch();
   place(link_poses, s);
+  return nearest_pair(s);
+}
+
+ClearanceResult CollisionChecker::nearest_pair(Scratch& s) const {
   ClearanceResult best;
   const std::size_t n_env = environment_pairs_.size();
   if (n_env + self_pairs_.size() == 0) return best;
@@ -506,6 +526,7 @@ ClearanceResult CollisionChecker::clearance_at(
   const auto evaluate = [&](std::size_t i) {
     ++best.exact_queries;
     const SignedDistanceResult r = pair_distance_below(i, best.distance, s);
+    best.iterations += r.iterations;
     if (r.status == Status::kAboveCutoff || !(r.signed_distance < best.distance)) return;
     best.distance = r.signed_distance;
     best.point_a = r.point_a;
@@ -570,6 +591,7 @@ double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q
   Scratch& s = scratch();
   model_->compute_link_poses_unchecked(q.data(), s.link_poses.data());
   place(s.link_poses, s);
+  s.q = q.data();
   const std::size_t n_env = environment_pairs_.size();
   const std::size_t n_all = n_env + self_pairs_.size();
   if (s.motions.size() < n_all) s.motions.resize(n_all);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <hullcheck/proximity_pair.hpp>
 #include <hullcheck/query_result.hpp>
 #include <hullcheck/robot/allowed_collision_matrix.hpp>
 #include <hullcheck/robot/robot_model.hpp>
@@ -32,6 +33,7 @@ struct ClearanceResult {
   Eigen::Vector3d normal{0, 0, 0};  ///< Unit, from A to B; point_b - point_a = distance*normal.
   Status status = Status::kConverged;
   int exact_queries = 0;  ///< Shape pairs that needed GJK (the rest were culled).
+  int iterations = 0;     ///< GJK and EPA iterations of those queries, all together.
 };
 
 /// Checks configurations of one robot against its enabled self pairs (allowed-collision matrix)
@@ -46,7 +48,9 @@ class CollisionChecker {
  public:
   /// Throws InputError when the matrix is not sized for the model. The scene's allowed pairs
   /// (link/link, link/object) are applied; entries naming neither a link nor an object of this
-  /// scene change nothing (MoveIt keeps such names in its matrices too).
+  /// scene change nothing (MoveIt keeps such names in its matrices too). Builds the warm-start
+  /// grids of self pairs moved by at most two configuration values (32 x 32 exact queries for
+  /// two values, 128 for one; about 4 ms for the Panda).
   CollisionChecker(std::shared_ptr<const RobotModel> model, AllowedCollisionMatrix matrix,
                    PlanningScene scene);
 
@@ -57,9 +61,13 @@ class CollisionChecker {
   /// True when no checked pair overlaps at configuration q (checked: count and finiteness).
   /// Stops at the first overlap found.
   bool is_valid(const Eigen::Ref<const Eigen::VectorXd>& q) const;
-  /// Minimum signed distance over all checked pairs at q, with the pair and witnesses.
+  /// Minimum signed distance over all checked pairs at q, with the pair and witnesses. Self
+  /// pairs moved by at most two configuration values (wrist links, fingers) start GJK from
+  /// their warm-start grid's cell for q: about half the iterations on random Panda states, the
+  /// same answers to the query tolerance, and the same answer for the same q on every thread.
   ClearanceResult clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const;
-  /// The same for link poses from RobotModel::compute_link_poses.
+  /// The same for link poses from RobotModel::compute_link_poses. clearance_at has no
+  /// configuration to look the grids up with: its queries start cold (same answers, slower).
   bool is_valid_at(const std::vector<Eigen::Isometry3d>& link_poses) const;
   ClearanceResult clearance_at(const std::vector<Eigen::Isometry3d>& link_poses) const;
 
@@ -113,10 +121,31 @@ class CollisionChecker {
     int obstacle;
     int begin, end;  // environment_pairs_[begin, end)
   };
+  // Warm starts of a self pair whose relative pose depends on at most two configuration
+  // values (wrist links, say): a grid over those values, each cell holding the final GJK
+  // simplex (hull vertex pairs) and direction at the cell's centre, computed at construction.
+  // A query at q starts GJK from its cell's entry, re-evaluated at the actual poses: a starting
+  // point only (answers to the same tolerance), and the same one for the same q on any thread.
+  // clearance and safe_advance use them; is_valid does not (its boolean GJK exits after a few
+  // iterations on these pairs, and starting it from the grid's direction measured slower).
+  struct WarmStartGrid {
+    int dims = -1;  // number of keying values; -1: no grid for this pair
+    int variables[2] = {0, 0};
+    double lower[2] = {0, 0};
+    double cells_per_unit[2] = {0, 0};  // cells per radian (or metre)
+    int cells[2] = {1, 1};
+    bool wraps[2] = {false, false};  // continuous joint: the grid covers one turn
+    std::vector<detail::WarmStart> starts;
+    const detail::WarmStart& at(const double* q) const;
+  };
+  void build_warm_start_grids();
+
   struct Scratch;
   Scratch& scratch() const;
   void place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const;
   const Eigen::Isometry3d& shape_pose(int shape, Scratch& s) const;
+  /// clearance() at the shapes placed by place().
+  ClearanceResult nearest_pair(Scratch& s) const;
   /// signed_distance_below(cutoff) of checked pair i (environment pairs first, then self pairs)
   /// at the shape poses of the current query.
   SignedDistanceResult pair_distance_below(std::size_t i, double cutoff, Scratch& s) const;
@@ -141,8 +170,9 @@ class CollisionChecker {
   Eigen::VectorXd lever_;
   bool has_self_pairs_ = false;
   // safe_advance: per robot shape / per self pair, the motion per unit of each variable (m).
-  Eigen::MatrixXd shape_levers_;      // shapes x variables
-  Eigen::MatrixXd self_pair_levers_;  // self pairs x variables
+  Eigen::MatrixXd shape_levers_;           // shapes x variables
+  Eigen::MatrixXd self_pair_levers_;       // self pairs x variables
+  std::vector<WarmStartGrid> warm_grids_;  // per self pair
 };
 
 }  // namespace hullcheck
