@@ -425,12 +425,13 @@ ClearanceResult CollisionChecker::nearest_pair(Scratch& s) const {
   if (n_env + self_pairs_.size() == 0) return best;
   // Best-first search over the pairs by lower bounds on their signed distance, refined lazily:
   // bounding balls (and, for a group of shapes, the group's ball) for every pair, the slab
-  // between the shapes' supporting planes along the balls' direction only for a pair that
-  // comes first with its ball bound, and the exact signed distance only for a pair that comes
-  // first with its slab bound. `cut` is an upper bound on the minimum (the distance between
-  // two points of some pair's shapes, from the slabs): a pair whose bound exceeds it cannot be
-  // the closest. The search ends when the smallest bound left reaches the best exact value.
-  // Queue entries: (lower bound, 2 * pair + 1 once the slab bound is in).
+  // between the shapes' supporting planes (along the balls' direction, or a self pair's
+  // warm-start direction) only for a pair that comes first with its ball bound, and the exact
+  // signed distance only for a pair that comes first with its slab bound. `cut` is an upper
+  // bound on the minimum (the distance between two points of some pair's shapes, from the
+  // slabs): a pair whose bound exceeds it cannot be the closest. The search ends when the
+  // smallest bound left reaches the best exact value. Queue entries: (lower bound, 2 * pair + 1
+  // once the slab bound is in).
   double cut = std::numeric_limits<double>::infinity();
   // Slab bound of pair i whose ball bound is `ball`: the refined lower bound; tightens the cut.
   const auto refine = [&](std::size_t i, double ball) {
@@ -448,14 +449,24 @@ ClearanceResult CollisionChecker::nearest_pair(Scratch& s) const {
       const SelfPair& p = self_pairs_[i - n_env];
       const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
       const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
-      const Eigen::Vector3d ab =
-          s.centers[static_cast<std::size_t>(p.b)] - s.centers[static_cast<std::size_t>(p.a)];
-      const double centres = ab.norm();
-      if (!(centres > 0.0)) return ball;  // concentric balls: no direction, no slab
-      slab_bounds(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
-                  shape_pose(p.a, s),
+      const Eigen::Isometry3d& pose_a = shape_pose(p.a, s);
+      Eigen::Vector3d n;
+      const WarmStartGrid& grid = warm_grids_[i - n_env];
+      const Eigen::Vector3d* direction =
+          grid.dims >= 0 && s.q != nullptr ? &grid.at(s.q).direction : nullptr;
+      if (direction != nullptr && direction->squaredNorm() > 0.0) {
+        // The closest pair's direction at the grid cell's centre: a near-optimal slab.
+        n = -(pose_a.linear() * *direction).normalized();
+      } else {  // the balls' direction
+        const Eigen::Vector3d ab =
+            s.centers[static_cast<std::size_t>(p.b)] - s.centers[static_cast<std::size_t>(p.a)];
+        const double centres = ab.norm();
+        if (!(centres > 0.0)) return ball;  // concentric balls: no direction, no slab
+        n = ab / centres;
+      }
+      slab_bounds(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape, pose_a,
                   model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
-                  shape_pose(p.b, s), ab / centres, &slab, &upper);
+                  shape_pose(p.b, s), n, &slab, &upper);
     }
     cut = std::min(cut, upper);
     return std::max(ball, slab);

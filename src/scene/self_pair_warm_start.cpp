@@ -100,9 +100,15 @@ void CollisionChecker::build_warm_start_grids() {
       }
       model.compute_link_poses(q, poses);
       detail::WarmStart& start = grid.starts[cell];
-      detail::query(shape_a, poses[static_cast<std::size_t>(a.link)] * origin_a, shape_b,
-                    poses[static_cast<std::size_t>(b.link)] * origin_b,
-                    detail::QueryKind::kSignedDistance, QueryOptions{}, &start);
+      const Eigen::Isometry3d pose_a = poses[static_cast<std::size_t>(a.link)] * origin_a;
+      const detail::Answer answer = detail::query(
+          shape_a, pose_a, shape_b, poses[static_cast<std::size_t>(b.link)] * origin_b,
+          detail::QueryKind::kSignedDistance, QueryOptions{}, &start);
+      // The direction: minus the normal from A to B (A's frame), for overlapping shapes too
+      // (EPA's), so that it also gives the slab bound's direction.
+      if (answer.normal.squaredNorm() > 0.0) {
+        start.direction = -(pose_a.linear().transpose() * answer.normal);
+      }
     }
     q = q_default;
   }

@@ -123,9 +123,11 @@ class CollisionChecker {
   };
   // Warm starts of a self pair whose relative pose depends on at most two configuration
   // values (wrist links, say): a grid over those values, each cell holding the final GJK
-  // simplex (hull vertex pairs) and direction at the cell's centre, computed at construction.
-  // A query at q starts GJK from its cell's entry, re-evaluated at the actual poses: a starting
-  // point only (answers to the same tolerance), and the same one for the same q on any thread.
+  // simplex (hull vertex pairs) and direction (minus the normal from A to B, A's frame) at the
+  // cell's centre, computed at construction. A query at q starts GJK from its cell's entry,
+  // re-evaluated at the actual poses: a starting point only (answers to the same tolerance),
+  // and the same one for the same q on any thread. clearance's slab bound for the pair is
+  // taken along the cell's direction (near the best separating direction, so near the answer).
   // clearance and safe_advance use them; is_valid does not (its boolean GJK exits after a few
   // iterations on these pairs, and starting it from the grid's direction measured slower).
   struct WarmStartGrid {
