@@ -32,7 +32,9 @@ detail::Answer checked_query(const Shape& a, const Eigen::Isometry3d& pose_a, co
 
 bool intersect(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                const Eigen::Isometry3d& pose_b, const QueryOptions& options) {
-  return checked_query(a, pose_a, b, pose_b, detail::QueryKind::kIntersect, options).overlapping;
+  require_finite(pose_a, "pose_a");
+  require_finite(pose_b, "pose_b");
+  return detail::intersect_query(a, pose_a, b, pose_b, options);
 }
 
 DistanceResult distance(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,

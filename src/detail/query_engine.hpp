@@ -316,6 +316,56 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   return answer;
 }
 
+/// intersect() without a warm start: the ball tests and the boolean GJK in a small frame of
+/// their own, returning only the verdict; run_query (the distance GJK and its tolerance) only
+/// when they cannot decide. Products are written out by columns (Eigen's products with a
+/// transposed block or an expression operand are out-of-line calls in GCC).
+template <class CoreA, class CoreB>
+bool run_intersect(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
+                   const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
+                   const QueryOptions& options) {
+  const double radius = radius_a + radius_b;
+  const auto rotation_a = pose_a.linear();
+  const auto rotation_b = pose_b.linear();
+  const auto into_a = [&rotation_a](const Eigen::Vector3d& x) {
+    return Eigen::Vector3d(rotation_a.col(0).dot(x), rotation_a.col(1).dot(x),
+                           rotation_a.col(2).dot(x));
+  };
+  const Eigen::Vector3d offset = into_a(pose_b.translation() - pose_a.translation());
+  Eigen::Matrix3d b_to_a;
+  for (int j = 0; j < 3; ++j) b_to_a.col(j) = into_a(rotation_b.col(j));
+  const Eigen::Vector3d& center_b = core_b.center();
+  const Eigen::Vector3d centres =
+      core_a.center() - (b_to_a.col(0) * center_b.x() + b_to_a.col(1) * center_b.y() +
+                         b_to_a.col(2) * center_b.z() + offset);
+  const double centres_squared = centres.squaredNorm();
+  const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
+  if (centres_squared > reach * reach) return false;  // balls around the cores apart
+  if (core_a.inner_radius() >= 0.0 && core_b.inner_radius() >= 0.0) {
+    const double inside = core_a.inner_radius() + radius_a + core_b.inner_radius() + radius_b;
+    if (centres_squared < inside * inside) return true;  // balls inside the shapes overlap
+  }
+  MinkowskiDifference<CoreA, CoreB> md(core_a, core_b, b_to_a, offset);
+  int iterations = 0;
+  boolean_gjk::PointOnly simplex[4];
+  const BooleanVerdict verdict =
+      gjk_boolean(md, -centres, radius, options.max_gjk_iterations, iterations, simplex);
+  if (verdict != BooleanVerdict::kUndecided) return verdict == BooleanVerdict::kOverlapping;
+  return run_query(core_a, radius_a, pose_a, core_b, radius_b, pose_b, QueryKind::kIntersect,
+                   options, nullptr)
+      .overlapping;
+}
+
+/// Dispatches on both shapes' kinds to run_intersect.
+inline bool intersect_query(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+                            const Eigen::Isometry3d& pose_b, const QueryOptions& options) {
+  return with_core(a, [&](const auto& core_a, double radius_a) {
+    return with_core(b, [&](const auto& core_b, double radius_b) {
+      return run_intersect(core_a, radius_a, pose_a, core_b, radius_b, pose_b, options);
+    });
+  });
+}
+
 /// Dispatches on both shapes' kinds to run_query.
 inline Answer query(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                     const Eigen::Isometry3d& pose_b, QueryKind kind, const QueryOptions& options,
