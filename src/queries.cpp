@@ -45,8 +45,9 @@ DistanceResult distance(const Shape& a, const Eigen::Isometry3d& pose_a, const S
 
 PenetrationResult penetration(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                               const Eigen::Isometry3d& pose_b, const QueryOptions& options) {
-  return detail::to_penetration_result(
-      checked_query(a, pose_a, b, pose_b, detail::QueryKind::kPenetration, options));
+  require_finite(pose_a, "pose_a");
+  require_finite(pose_b, "pose_b");
+  return detail::to_penetration_result(detail::penetration_query(a, pose_a, b, pose_b, options));
 }
 
 SignedDistanceResult signed_distance(const Shape& a, const Eigen::Isometry3d& pose_a,

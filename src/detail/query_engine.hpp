@@ -111,6 +111,18 @@ inline Simplex enclosing_simplex(const SimplexVertex (&tetrahedron)[4]) {
   return simplex;
 }
 
+/// The absolute tolerance of a query (QueryOptions' model): relative to the larger shape, and
+/// no smaller than what rounding of the difference's coordinates allows (they are as large as
+/// the offset `translation` between the shapes).
+template <class CoreA, class CoreB>
+double query_tolerance(const CoreA& core_a, double radius_a, const CoreB& core_b, double radius_b,
+                       const Eigen::Vector3d& translation, const QueryOptions& options) {
+  const double scale = std::max(core_extent(core_a) + radius_a, core_extent(core_b) + radius_b);
+  const double rounding =
+      16.0 * std::numeric_limits<double>::epsilon() * (translation.norm() + 2.0 * scale);
+  return std::max(options.relative_tolerance * scale, rounding);
+}
+
 /// Core query between two placed cores. `warm` (optional) supplies and receives the warm start.
 /// `cutoff` (kSignedDistance only): the caller needs the answer only when the signed distance
 /// is below it; once it is proven to be at least the cutoff, the query stops with status
@@ -193,13 +205,8 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
       return answer;
     }
   }
-  // Tolerance model (QueryOptions): relative to the larger shape.
-  const double scale = std::max(core_extent(core_a) + radius_a, core_extent(core_b) + radius_b);
-  // Coordinates of the difference are as large as the offset between the shapes; rounding of
-  // those bounds the reachable accuracy from below.
-  const double rounding =
-      16.0 * std::numeric_limits<double>::epsilon() * (md.translation.norm() + 2.0 * scale);
-  const double tolerance = std::max(options.relative_tolerance * scale, rounding);
+  const double tolerance =
+      query_tolerance(core_a, radius_a, core_b, radius_b, md.translation, options);
   if (kind == QueryKind::kPenetration || (has_cutoff && cutoff <= 0.0)) {
     // The cheap boolean GJK proves separation or yields a tetrahedron around the origin. (A
     // signed distance needed only below a cutoff <= 0 matters only when the shapes overlap.)
@@ -316,44 +323,86 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   return answer;
 }
 
-/// intersect() without a warm start: the ball tests and the boolean GJK in a small frame of
-/// their own, returning only the verdict; run_query (the distance GJK and its tolerance) only
-/// when they cannot decide. Products are written out by columns (Eigen's products with a
-/// transposed block or an expression operand are out-of-line calls in GCC).
+/// B placed in A's frame, and the cores' ball centres (A's minus B's, A's frame). Products
+/// written out by columns: Eigen's products with a transposed block or an expression operand
+/// are out-of-line calls in GCC.
+struct RelativePlacement {
+  Eigen::Matrix3d rotation;     // B's frame to A's frame
+  Eigen::Vector3d translation;  // B's origin in A's frame
+  Eigen::Vector3d centres;
+  double centres_squared;
+};
+
 template <class CoreA, class CoreB>
-bool run_intersect(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
-                   const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
-                   const QueryOptions& options) {
-  const double radius = radius_a + radius_b;
+RelativePlacement relative_placement(const CoreA& core_a, const Eigen::Isometry3d& pose_a,
+                                     const CoreB& core_b, const Eigen::Isometry3d& pose_b) {
   const auto rotation_a = pose_a.linear();
   const auto rotation_b = pose_b.linear();
   const auto into_a = [&rotation_a](const Eigen::Vector3d& x) {
     return Eigen::Vector3d(rotation_a.col(0).dot(x), rotation_a.col(1).dot(x),
                            rotation_a.col(2).dot(x));
   };
-  const Eigen::Vector3d offset = into_a(pose_b.translation() - pose_a.translation());
-  Eigen::Matrix3d b_to_a;
-  for (int j = 0; j < 3; ++j) b_to_a.col(j) = into_a(rotation_b.col(j));
+  RelativePlacement r;
+  r.translation = into_a(pose_b.translation() - pose_a.translation());
+  for (int j = 0; j < 3; ++j) r.rotation.col(j) = into_a(rotation_b.col(j));
   const Eigen::Vector3d& center_b = core_b.center();
-  const Eigen::Vector3d centres =
-      core_a.center() - (b_to_a.col(0) * center_b.x() + b_to_a.col(1) * center_b.y() +
-                         b_to_a.col(2) * center_b.z() + offset);
-  const double centres_squared = centres.squaredNorm();
+  r.centres =
+      core_a.center() - (r.rotation.col(0) * center_b.x() + r.rotation.col(1) * center_b.y() +
+                         r.rotation.col(2) * center_b.z() + r.translation);
+  r.centres_squared = r.centres.squaredNorm();
+  return r;
+}
+
+/// intersect() without a warm start: the ball tests and the boolean GJK in a small frame of
+/// their own, returning only the verdict; run_query (the distance GJK and its tolerance) only
+/// when they cannot decide.
+template <class CoreA, class CoreB>
+bool run_intersect(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
+                   const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
+                   const QueryOptions& options) {
+  const double radius = radius_a + radius_b;
+  const RelativePlacement r = relative_placement(core_a, pose_a, core_b, pose_b);
   const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
-  if (centres_squared > reach * reach) return false;  // balls around the cores apart
+  if (r.centres_squared > reach * reach) return false;  // balls around the cores apart
   if (core_a.inner_radius() >= 0.0 && core_b.inner_radius() >= 0.0) {
     const double inside = core_a.inner_radius() + radius_a + core_b.inner_radius() + radius_b;
-    if (centres_squared < inside * inside) return true;  // balls inside the shapes overlap
+    if (r.centres_squared < inside * inside) return true;  // balls inside the shapes overlap
   }
-  MinkowskiDifference<CoreA, CoreB> md(core_a, core_b, b_to_a, offset);
+  MinkowskiDifference<CoreA, CoreB> md(core_a, core_b, r.rotation, r.translation);
   int iterations = 0;
   boolean_gjk::PointOnly simplex[4];
   const BooleanVerdict verdict =
-      gjk_boolean(md, -centres, radius, options.max_gjk_iterations, iterations, simplex);
+      gjk_boolean(md, -r.centres, radius, options.max_gjk_iterations, iterations, simplex);
   if (verdict != BooleanVerdict::kUndecided) return verdict == BooleanVerdict::kOverlapping;
   return run_query(core_a, radius_a, pose_a, core_b, radius_b, pose_b, QueryKind::kIntersect,
                    options, nullptr)
       .overlapping;
+}
+
+/// penetration() without a warm start: ball test, boolean GJK, EPA from its tetrahedron, in a
+/// frame of their own; run_query only when the boolean GJK cannot decide.
+template <class CoreA, class CoreB>
+Answer run_penetration(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
+                       const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
+                       const QueryOptions& options) {
+  const double radius = radius_a + radius_b;
+  const RelativePlacement r = relative_placement(core_a, pose_a, core_b, pose_b);
+  const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
+  Answer answer;
+  if (r.centres_squared > reach * reach) return answer;  // balls around the cores apart
+  MinkowskiDifference<CoreA, CoreB> md(core_a, core_b, r.rotation, r.translation);
+  SimplexVertex tetrahedron[4];
+  const BooleanVerdict verdict = gjk_boolean(md, -r.centres, radius, options.max_gjk_iterations,
+                                             answer.iterations, tetrahedron);
+  if (verdict == BooleanVerdict::kApart) return answer;
+  if (verdict == BooleanVerdict::kUndecided) {
+    return run_query(core_a, radius_a, pose_a, core_b, radius_b, pose_b, QueryKind::kPenetration,
+                     options, nullptr);
+  }
+  add_penetration(md, enclosing_simplex(tetrahedron), radius_a, radius_b, pose_a,
+                  query_tolerance(core_a, radius_a, core_b, radius_b, r.translation, options),
+                  options, answer);
+  return answer;
 }
 
 /// Dispatches on both shapes' kinds to run_intersect.
@@ -362,6 +411,16 @@ inline bool intersect_query(const Shape& a, const Eigen::Isometry3d& pose_a, con
   return with_core(a, [&](const auto& core_a, double radius_a) {
     return with_core(b, [&](const auto& core_b, double radius_b) {
       return run_intersect(core_a, radius_a, pose_a, core_b, radius_b, pose_b, options);
+    });
+  });
+}
+
+/// Dispatches on both shapes' kinds to run_penetration.
+inline Answer penetration_query(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+                                const Eigen::Isometry3d& pose_b, const QueryOptions& options) {
+  return with_core(a, [&](const auto& core_a, double radius_a) {
+    return with_core(b, [&](const auto& core_b, double radius_b) {
+      return run_penetration(core_a, radius_a, pose_a, core_b, radius_b, pose_b, options);
     });
   });
 }
