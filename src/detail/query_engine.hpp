@@ -331,11 +331,13 @@ struct RelativePlacement {
   Eigen::Vector3d translation;  // B's origin in A's frame
   Eigen::Vector3d centres;
   double centres_squared;
+  bool apart;  // the balls around the cores, grown by the radii, are apart: so are the shapes
 };
 
 template <class CoreA, class CoreB>
 RelativePlacement relative_placement(const CoreA& core_a, const Eigen::Isometry3d& pose_a,
-                                     const CoreB& core_b, const Eigen::Isometry3d& pose_b) {
+                                     const CoreB& core_b, const Eigen::Isometry3d& pose_b,
+                                     double radius) {
   const auto rotation_a = pose_a.linear();
   const auto rotation_b = pose_b.linear();
   const auto into_a = [&rotation_a](const Eigen::Vector3d& x) {
@@ -350,6 +352,8 @@ RelativePlacement relative_placement(const CoreA& core_a, const Eigen::Isometry3
       core_a.center() - (r.rotation.col(0) * center_b.x() + r.rotation.col(1) * center_b.y() +
                          r.rotation.col(2) * center_b.z() + r.translation);
   r.centres_squared = r.centres.squaredNorm();
+  const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
+  r.apart = r.centres_squared > reach * reach;
   return r;
 }
 
@@ -361,9 +365,8 @@ bool run_intersect(const CoreA& core_a, double radius_a, const Eigen::Isometry3d
                    const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
                    const QueryOptions& options) {
   const double radius = radius_a + radius_b;
-  const RelativePlacement r = relative_placement(core_a, pose_a, core_b, pose_b);
-  const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
-  if (r.centres_squared > reach * reach) return false;  // balls around the cores apart
+  const RelativePlacement r = relative_placement(core_a, pose_a, core_b, pose_b, radius);
+  if (r.apart) return false;
   if (core_a.inner_radius() >= 0.0 && core_b.inner_radius() >= 0.0) {
     const double inside = core_a.inner_radius() + radius_a + core_b.inner_radius() + radius_b;
     if (r.centres_squared < inside * inside) return true;  // balls inside the shapes overlap
@@ -386,10 +389,9 @@ Answer run_penetration(const CoreA& core_a, double radius_a, const Eigen::Isomet
                        const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
                        const QueryOptions& options) {
   const double radius = radius_a + radius_b;
-  const RelativePlacement r = relative_placement(core_a, pose_a, core_b, pose_b);
-  const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
+  const RelativePlacement r = relative_placement(core_a, pose_a, core_b, pose_b, radius);
   Answer answer;
-  if (r.centres_squared > reach * reach) return answer;  // balls around the cores apart
+  if (r.apart) return answer;
   MinkowskiDifference<CoreA, CoreB> md(core_a, core_b, r.rotation, r.translation);
   SimplexVertex tetrahedron[4];
   const BooleanVerdict verdict = gjk_boolean(md, -r.centres, radius, options.max_gjk_iterations,
@@ -405,36 +407,43 @@ Answer run_penetration(const CoreA& core_a, double radius_a, const Eigen::Isomet
   return answer;
 }
 
-/// Dispatches on both shapes' kinds to run_intersect.
+/// Calls f(core_a, radius_a, core_b, radius_b) with both shapes' cores and radii.
+template <class F>
+decltype(auto) with_cores(const Shape& a, const Shape& b, F&& f) {
+  return with_core(a, [&](const auto& core_a, double radius_a) {
+    return with_core(b, [&](const auto& core_b, double radius_b) {
+      return f(core_a, radius_a, core_b, radius_b);
+    });
+  });
+}
+
+/// run_intersect on two shapes.
 inline bool intersect_query(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                             const Eigen::Isometry3d& pose_b, const QueryOptions& options) {
-  return with_core(a, [&](const auto& core_a, double radius_a) {
-    return with_core(b, [&](const auto& core_b, double radius_b) {
-      return run_intersect(core_a, radius_a, pose_a, core_b, radius_b, pose_b, options);
-    });
-  });
+  return with_cores(
+      a, b, [&](const auto& core_a, double radius_a, const auto& core_b, double radius_b) {
+        return run_intersect(core_a, radius_a, pose_a, core_b, radius_b, pose_b, options);
+      });
 }
 
-/// Dispatches on both shapes' kinds to run_penetration.
+/// run_penetration on two shapes.
 inline Answer penetration_query(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                                 const Eigen::Isometry3d& pose_b, const QueryOptions& options) {
-  return with_core(a, [&](const auto& core_a, double radius_a) {
-    return with_core(b, [&](const auto& core_b, double radius_b) {
-      return run_penetration(core_a, radius_a, pose_a, core_b, radius_b, pose_b, options);
-    });
-  });
+  return with_cores(
+      a, b, [&](const auto& core_a, double radius_a, const auto& core_b, double radius_b) {
+        return run_penetration(core_a, radius_a, pose_a, core_b, radius_b, pose_b, options);
+      });
 }
 
-/// Dispatches on both shapes' kinds to run_query.
+/// run_query on two shapes.
 inline Answer query(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                     const Eigen::Isometry3d& pose_b, QueryKind kind, const QueryOptions& options,
                     WarmStart* warm, double cutoff = INFINITY) {
-  return with_core(a, [&](const auto& core_a, double radius_a) {
-    return with_core(b, [&](const auto& core_b, double radius_b) {
-      return run_query(core_a, radius_a, pose_a, core_b, radius_b, pose_b, kind, options, warm,
-                       cutoff);
-    });
-  });
+  return with_cores(a, b,
+                    [&](const auto& core_a, double radius_a, const auto& core_b, double radius_b) {
+                      return run_query(core_a, radius_a, pose_a, core_b, radius_b, pose_b, kind,
+                                       options, warm, cutoff);
+                    });
 }
 
 }  // namespace hullcheck::detail
