@@ -254,7 +254,7 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
       self_pair_levers_(static_cast<Eigen::Index>(p), v) += m * arm(ji, above_a ? a : b);
     }
   }
-  build_warm_start_grids();
+  build_warm_start_grids(above);
 }
 
 void CollisionChecker::place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const {

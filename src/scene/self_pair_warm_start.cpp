@@ -9,20 +9,9 @@ namespace hullcheck {
 namespace {
 
 // Cells per keying value: a finer grid starts GJK nearer its answer but costs memory (one
-// detail::WarmStart, 72 bytes, per cell) and construction time (one query per cell).
+// detail::WarmStart, 64 bytes, per cell) and construction time (one query per cell).
 constexpr int kCellsOneValue = 128;
 constexpr int kCellsTwoValues = 32;
-
-// Joints on the path from the model root to `link`.
-std::vector<int> joints_above(const RobotModel& model, int link) {
-  std::vector<int> joints;
-  for (int l = link; model.link(l).parent_joint >= 0;) {
-    const int j = model.link(l).parent_joint;
-    joints.push_back(j);
-    l = model.joint(j).parent_link;
-  }
-  return joints;
-}
 
 }  // namespace
 
@@ -38,7 +27,7 @@ const detail::WarmStart& CollisionChecker::WarmStartGrid::at(const double* q) co
   return starts[static_cast<std::size_t>(cell)];
 }
 
-void CollisionChecker::build_warm_start_grids() {
+void CollisionChecker::build_warm_start_grids(const std::vector<std::vector<bool>>& above) {
   const RobotModel& model = *model_;
   warm_grids_.assign(self_pairs_.size(), WarmStartGrid{});
   const Eigen::VectorXd lower = model.lower_limits();
@@ -50,17 +39,15 @@ void CollisionChecker::build_warm_start_grids() {
     const RobotShape& b = shapes_[static_cast<std::size_t>(self_pairs_[k].b)];
     // The values that move one link relative to the other: drivers of the movable joints
     // above exactly one of them.
-    const std::vector<int> above_a = joints_above(model, a.link);
-    const std::vector<int> above_b = joints_above(model, b.link);
     std::vector<int> keys;
-    for (const auto& [mine, other] :
-         {std::pair(&above_a, &above_b), std::pair(&above_b, &above_a)}) {
-      for (int j : *mine) {
-        if (model.joint(j).type == JointType::kFixed) continue;
-        if (std::find(other->begin(), other->end(), j) != other->end()) continue;
-        const int v = model.joint(j).driver();
-        if (std::find(keys.begin(), keys.end(), v) == keys.end()) keys.push_back(v);
+    for (int j = 0; j < static_cast<int>(model.joints().size()); ++j) {
+      if (model.joint(j).type == JointType::kFixed) continue;
+      if (above[static_cast<std::size_t>(a.link)][static_cast<std::size_t>(j)] ==
+          above[static_cast<std::size_t>(b.link)][static_cast<std::size_t>(j)]) {
+        continue;
       }
+      const int v = model.joint(j).driver();
+      if (std::find(keys.begin(), keys.end(), v) == keys.end()) keys.push_back(v);
     }
     if (keys.size() > 2) continue;
     WarmStartGrid& grid = warm_grids_[k];

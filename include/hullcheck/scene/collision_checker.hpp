@@ -140,7 +140,8 @@ class CollisionChecker {
     std::vector<detail::WarmStart> starts;
     const detail::WarmStart& at(const double* q) const;
   };
-  void build_warm_start_grids();
+  /// Fills warm_grids_; above[l][j]: joint j is on the path from the root to link l.
+  void build_warm_start_grids(const std::vector<std::vector<bool>>& above);
 
   struct Scratch;
   Scratch& scratch() const;
