@@ -128,7 +128,7 @@ TEST(ClearanceWarmStart, SavesIterations) {
   EXPECT_LT(warm, 0.8 * cold);
   // The same cell, so the same start: the poses differ by rounding only, which changes the
   // count now and then.
-  EXPECT_LE(turned_differs, 20);  // measured: 8 (a grid without wrap-around: 64)
+  EXPECT_LE(turned_differs, 20);  // measured: 0 (a grid without wrap-around: 43)
 }
 
 }  // namespace
