@@ -166,6 +166,16 @@ ConvexHull::ConvexHull(const std::vector<Eigen::Vector3d>& points) {
     data->adjacency.insert(data->adjacency.end(), list.begin(), list.end());
     data->adjacency_offsets.push_back(static_cast<std::int32_t>(data->adjacency.size()));
   }
+  data->neighbour_slots.push_back(0);
+  for (int i = 0; i < n; ++i) {
+    std::vector<std::int32_t> list = neighbors[i];
+    if (list.size() % 2 != 0) list.push_back(i);  // pad: i's own value never beats it
+    data->neighbour_index.insert(data->neighbour_index.end(), list.begin(), list.end());
+    for (int axis = 0; axis < 3; ++axis) {
+      for (const std::int32_t j : list) data->neighbour_coords.push_back(data->vertices[j][axis]);
+    }
+    data->neighbour_slots.push_back(static_cast<std::int32_t>(data->neighbour_index.size()));
+  }
   for (const auto& t : hull.triangles) {
     data->triangles.push_back({local[t[0]], local[t[1]], local[t[2]]});
   }

@@ -108,15 +108,18 @@ bool tetrahedron(V* s, int& n, Eigen::Vector3d& d) {
 
 }  // namespace boolean_gjk
 
-/// Runs the boolean GJK from search direction `d` with at most `max_iterations` support calls.
+/// Continues the boolean GJK from a simplex of `n` support points (s[0] newest) and search
+/// direction `d`, `iterations` support calls made so far, until at most `max_iterations`.
 /// On kOverlapping, `s` holds a tetrahedron of support points enclosing the origin.
 template <class MD, class V>
-BooleanVerdict gjk_boolean(MD& md, Eigen::Vector3d d, double radius, int max_iterations,
-                           int& iterations, V (&s)[4]) {
+BooleanVerdict gjk_boolean_continue(MD& md, Eigen::Vector3d d, int n, double radius,
+                                    int max_iterations, int& iterations, V (&s)[4]) {
   Eigen::Vector3d w, pa, pb;
-  if (!(d.squaredNorm() > 0.0)) d = Eigen::Vector3d::UnitX();
-  int n = 0;
-  for (iterations = 1; iterations <= max_iterations; ++iterations) {
+  iterations = n;
+  // Origin on the first point (touching, or a degenerate start): let the distance GJK decide.
+  if (!(d.squaredNorm() > 0.0)) return BooleanVerdict::kUndecided;
+  while (iterations < max_iterations) {
+    ++iterations;
     md.support(d, w, pa, pb);
     const double dw = d.dot(w);
     if (dw < 0.0) {
@@ -145,6 +148,15 @@ BooleanVerdict gjk_boolean(MD& md, Eigen::Vector3d d, double radius, int max_ite
     if (!(d.squaredNorm() > 0.0)) return BooleanVerdict::kUndecided;
   }
   return BooleanVerdict::kUndecided;
+}
+
+/// Runs the boolean GJK from search direction `d` with at most `max_iterations` support calls.
+/// On kOverlapping, `s` holds a tetrahedron of support points enclosing the origin.
+template <class MD, class V>
+BooleanVerdict gjk_boolean(MD& md, Eigen::Vector3d d, double radius, int max_iterations,
+                           int& iterations, V (&s)[4]) {
+  if (!(d.squaredNorm() > 0.0)) d = Eigen::Vector3d::UnitX();
+  return gjk_boolean_continue(md, d, 0, radius, max_iterations, iterations, s);
 }
 
 }  // namespace hullcheck::detail

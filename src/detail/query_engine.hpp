@@ -323,88 +323,146 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   return answer;
 }
 
-/// B placed in A's frame, and the cores' ball centres (A's minus B's, A's frame). Products
-/// written out by columns: Eigen's products with a transposed block or an expression operand
-/// are out-of-line calls in GCC.
-struct RelativePlacement {
-  Eigen::Matrix3d rotation;     // B's frame to A's frame
-  Eigen::Vector3d translation;  // B's origin in A's frame
-  Eigen::Vector3d centres;
-  double centres_squared;
-  bool apart;  // the balls around the cores, grown by the radii, are apart: so are the shapes
-};
-
-template <class CoreA, class CoreB>
-RelativePlacement relative_placement(const CoreA& core_a, const Eigen::Isometry3d& pose_a,
-                                     const CoreB& core_b, const Eigen::Isometry3d& pose_b,
-                                     double radius) {
-  const auto rotation_a = pose_a.linear();
-  const auto rotation_b = pose_b.linear();
-  const auto into_a = [&rotation_a](const Eigen::Vector3d& x) {
-    return Eigen::Vector3d(rotation_a.col(0).dot(x), rotation_a.col(1).dot(x),
-                           rotation_a.col(2).dot(x));
-  };
-  RelativePlacement r;
-  r.translation = into_a(pose_b.translation() - pose_a.translation());
-  for (int j = 0; j < 3; ++j) r.rotation.col(j) = into_a(rotation_b.col(j));
-  const Eigen::Vector3d& center_b = core_b.center();
-  r.centres =
-      core_a.center() - (r.rotation.col(0) * center_b.x() + r.rotation.col(1) * center_b.y() +
-                         r.rotation.col(2) * center_b.z() + r.translation);
-  r.centres_squared = r.centres.squaredNorm();
-  const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
-  r.apart = r.centres_squared > reach * reach;
-  return r;
+/// R * x for a pose's rotation R, written out by columns (Eigen's products with a block of an
+/// Isometry3d are out-of-line calls in GCC).
+HULLCHECK_ALWAYS_INLINE Eigen::Vector3d rotated(const Eigen::Isometry3d& pose,
+                                                const Eigen::Vector3d& x) {
+  const auto r = pose.linear();
+  return r.col(0) * x.x() + r.col(1) * x.y() + r.col(2) * x.z();
 }
 
-/// intersect() without a warm start: the ball tests and the boolean GJK in a small frame of
-/// their own, returning only the verdict; run_query (the distance GJK and its tolerance) only
+/// R^T * x for a pose's rotation R: a world direction in the pose's local frame.
+HULLCHECK_ALWAYS_INLINE Eigen::Vector3d unrotated(const Eigen::Isometry3d& pose,
+                                                  const Eigen::Vector3d& x) {
+  const auto r = pose.linear();
+  return {r.col(0).dot(x), r.col(1).dot(x), r.col(2).dot(x)};
+}
+
+/// The Minkowski difference with B placed in A's frame (x_A = rotation * x_B + translation).
+template <class CoreA, class CoreB>
+MinkowskiDifference<CoreA, CoreB> placed_difference(const CoreA& core_a,
+                                                    const Eigen::Isometry3d& pose_a,
+                                                    const CoreB& core_b,
+                                                    const Eigen::Isometry3d& pose_b) {
+  Eigen::Matrix3d rotation;
+  for (int j = 0; j < 3; ++j) rotation.col(j) = unrotated(pose_a, pose_b.linear().col(j));
+  return MinkowskiDifference<CoreA, CoreB>(
+      core_a, core_b, rotation, unrotated(pose_a, pose_b.translation() - pose_a.translation()));
+}
+
+/// What the tests before the boolean GJK decided.
+enum class Prelude {
+  kApart,        // proven apart: balls, or a plane normal to the centres' line
+  kOverlapping,  // proven overlapping: balls inside the shapes
+  kUndecided,    // cores apart along the centres' line, but maybe within the radii
+  kContinue,     // run the boolean GJK from `first` (its first support point)
+};
+
+/// The first support point of A - B in A's frame, with its parts and vertex indices.
+struct FirstSupport {
+  Eigen::Vector3d a, b;  // b already in the world frame until placed by the caller
+  int index_a = -1, index_b = -1;
+};
+
+/// Ball tests and the boolean GJK's first iteration, in the world frame: everything the
+/// relative rotation of B in A's frame is not needed for, so that pairs settled here (most
+/// pairs of a broad phase's output) never build it. The first search direction is the line
+/// from A's ball centre to B's (a point inside the difference near its middle: mesh origins can
+/// lie far from the mesh). `inner_test`: use the balls inside the shapes (intersect only).
+/// On kContinue, `first` holds the support points along that line: `a` in A's frame, `b` in
+/// the world frame.
+template <class CoreA, class CoreB>
+Prelude centre_line_prelude(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
+                            const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
+                            bool inner_test, FirstSupport& first) {
+  const double radius = radius_a + radius_b;
+  Eigen::Vector3d u = rotated(pose_b, core_b.center()) + pose_b.translation() -
+                      (rotated(pose_a, core_a.center()) + pose_a.translation());
+  const double u2 = u.squaredNorm();
+  const double reach = core_a.outer_radius() + core_b.outer_radius() + radius;
+  if (u2 > reach * reach) return Prelude::kApart;
+  if (inner_test && core_a.inner_radius() >= 0.0 && core_b.inner_radius() >= 0.0) {
+    const double inside = core_a.inner_radius() + radius_a + core_b.inner_radius() + radius_b;
+    if (u2 < inside * inside) return Prelude::kOverlapping;  // balls inside the shapes overlap
+  }
+  if (!(u2 > 0.0)) u = Eigen::Vector3d::UnitX();
+  // Support of A along u and of B along -u; w = a - b, apart when u.w < -radius |u|.
+  const Eigen::Vector3d d_a = unrotated(pose_a, u);
+  const Eigen::Vector3d d_b = -unrotated(pose_b, u);
+  first.a = core_a.support(d_a, first.index_a);
+  const Eigen::Vector3d b = core_b.support(d_b, first.index_b);
+  const double uw =
+      d_a.dot(first.a) + d_b.dot(b) - u.dot(pose_b.translation() - pose_a.translation());
+  if (uw < 0.0) {
+    return uw * uw > radius * radius * u.squaredNorm() ? Prelude::kApart : Prelude::kUndecided;
+  }
+  first.b = rotated(pose_b, b) + pose_b.translation();
+  return Prelude::kContinue;
+}
+
+/// The boolean GJK after centre_line_prelude's first iteration (kContinue), in A's frame.
+template <class MD, class V>
+BooleanVerdict boolean_gjk_after(MD& md, FirstSupport& first, const Eigen::Isometry3d& pose_a,
+                                 double radius, const QueryOptions& options, int& iterations,
+                                 V (&simplex)[4]) {
+  const Eigen::Vector3d b = unrotated(pose_a, first.b - pose_a.translation());
+  simplex[0].set(first.a - b, first.a, b);
+  return gjk_boolean_continue(md, b - first.a, 1, radius, options.max_gjk_iterations, iterations,
+                              simplex);
+}
+
+/// intersect() without a warm start: centre_line_prelude, then the boolean GJK in a small frame
+/// of its own, returning only the verdict; run_query (the distance GJK and its tolerance) only
 /// when they cannot decide.
 template <class CoreA, class CoreB>
 bool run_intersect(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
                    const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
                    const QueryOptions& options) {
-  const double radius = radius_a + radius_b;
-  const RelativePlacement r = relative_placement(core_a, pose_a, core_b, pose_b, radius);
-  if (r.apart) return false;
-  if (core_a.inner_radius() >= 0.0 && core_b.inner_radius() >= 0.0) {
-    const double inside = core_a.inner_radius() + radius_a + core_b.inner_radius() + radius_b;
-    if (r.centres_squared < inside * inside) return true;  // balls inside the shapes overlap
+  FirstSupport first;
+  const Prelude prelude =
+      centre_line_prelude(core_a, radius_a, pose_a, core_b, radius_b, pose_b, true, first);
+  if (prelude == Prelude::kContinue) {
+    auto md = placed_difference(core_a, pose_a, core_b, pose_b);
+    int iterations = 0;
+    boolean_gjk::PointOnly simplex[4];
+    const BooleanVerdict verdict =
+        boolean_gjk_after(md, first, pose_a, radius_a + radius_b, options, iterations, simplex);
+    if (verdict != BooleanVerdict::kUndecided) return verdict == BooleanVerdict::kOverlapping;
+  } else if (prelude != Prelude::kUndecided) {
+    return prelude == Prelude::kOverlapping;
   }
-  MinkowskiDifference<CoreA, CoreB> md(core_a, core_b, r.rotation, r.translation);
-  int iterations = 0;
-  boolean_gjk::PointOnly simplex[4];
-  const BooleanVerdict verdict =
-      gjk_boolean(md, -r.centres, radius, options.max_gjk_iterations, iterations, simplex);
-  if (verdict != BooleanVerdict::kUndecided) return verdict == BooleanVerdict::kOverlapping;
   return run_query(core_a, radius_a, pose_a, core_b, radius_b, pose_b, QueryKind::kIntersect,
                    options, nullptr)
       .overlapping;
 }
 
-/// penetration() without a warm start: ball test, boolean GJK, EPA from its tetrahedron, in a
-/// frame of their own; run_query only when the boolean GJK cannot decide.
+/// penetration() without a warm start: centre_line_prelude (no inner balls: the depth is
+/// needed), boolean GJK, EPA from its tetrahedron, in a frame of their own; run_query only when
+/// the boolean GJK cannot decide.
 template <class CoreA, class CoreB>
 Answer run_penetration(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
                        const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
                        const QueryOptions& options) {
-  const double radius = radius_a + radius_b;
-  const RelativePlacement r = relative_placement(core_a, pose_a, core_b, pose_b, radius);
   Answer answer;
-  if (r.apart) return answer;
-  MinkowskiDifference<CoreA, CoreB> md(core_a, core_b, r.rotation, r.translation);
-  SimplexVertex tetrahedron[4];
-  const BooleanVerdict verdict = gjk_boolean(md, -r.centres, radius, options.max_gjk_iterations,
-                                             answer.iterations, tetrahedron);
-  if (verdict == BooleanVerdict::kApart) return answer;
-  if (verdict == BooleanVerdict::kUndecided) {
-    return run_query(core_a, radius_a, pose_a, core_b, radius_b, pose_b, QueryKind::kPenetration,
-                     options, nullptr);
+  FirstSupport first;
+  const Prelude prelude =
+      centre_line_prelude(core_a, radius_a, pose_a, core_b, radius_b, pose_b, false, first);
+  if (prelude == Prelude::kApart) return answer;
+  if (prelude == Prelude::kContinue) {
+    auto md = placed_difference(core_a, pose_a, core_b, pose_b);
+    SimplexVertex tetrahedron[4];
+    const BooleanVerdict verdict = boolean_gjk_after(md, first, pose_a, radius_a + radius_b,
+                                                     options, answer.iterations, tetrahedron);
+    if (verdict == BooleanVerdict::kApart) return answer;
+    if (verdict == BooleanVerdict::kOverlapping) {
+      add_penetration(md, enclosing_simplex(tetrahedron), radius_a, radius_b, pose_a,
+                      query_tolerance(core_a, radius_a, core_b, radius_b, md.translation, options),
+                      options, answer);
+      return answer;
+    }
   }
-  add_penetration(md, enclosing_simplex(tetrahedron), radius_a, radius_b, pose_a,
-                  query_tolerance(core_a, radius_a, core_b, radius_b, r.translation, options),
-                  options, answer);
-  return answer;
+  return run_query(core_a, radius_a, pose_a, core_b, radius_b, pose_b, QueryKind::kPenetration,
+                   options, nullptr);
 }
 
 /// Calls f(core_a, radius_a, core_b, radius_b) with both shapes' cores and radii.

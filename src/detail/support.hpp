@@ -11,6 +11,8 @@
 #include <cmath>
 #include <hullcheck/convex_hull.hpp>
 
+#include "inline.hpp"
+
 namespace hullcheck::detail {
 
 // Each core has a centre inside it, with a ball around the core (outer_radius) and one inside
@@ -85,7 +87,7 @@ struct CylinderCore {
 /// Two passes: the maximum value (two vertices per SSE2 instruction), then the first vertex
 /// reaching it, computed with the same arithmetic so the values compare bit for bit. The arrays
 /// are padded to a multiple of 4 with copies of vertex 0, which cannot change the answer.
-inline int scan_support_index(const HullData& h, const Eigen::Vector3d& d) {
+HULLCHECK_ALWAYS_INLINE int scan_support_index(const HullData& h, const Eigen::Vector3d& d) {
   const double* xs = h.xs.data();
   const double* ys = h.ys.data();
   const double* zs = h.zs.data();
@@ -128,28 +130,50 @@ inline int scan_support_index(const HullData& h, const Eigen::Vector3d& d) {
 /// Index of a vertex maximising dot(v, d) by steepest-ascent hill climbing over the hull's edge
 /// graph from `start`. Exact on a convex polytope: a vertex with no strictly better neighbour
 /// is a global maximum (the edge directions at a vertex span a cone containing the polytope).
+/// Each step evaluates the current vertex's neighbours from their contiguous block (two per
+/// SSE2 instruction), then moves to the first neighbour with the largest value if it beats the
+/// current one; values are computed as in scan_support_index, so they compare bit for bit.
 inline int climb_support_index(const HullData& h, const Eigen::Vector3d& d, int start) {
-  const double* xs = h.xs.data();
-  const double* ys = h.ys.data();
-  const double* zs = h.zs.data();
-  const std::int32_t* offsets = h.adjacency_offsets.data();
-  const std::int32_t* adjacency = h.adjacency.data();
+  const std::int32_t* slots = h.neighbour_slots.data();
+  const std::int32_t* index = h.neighbour_index.data();
+  const double* coords = h.neighbour_coords.data();
   const double dx = d.x(), dy = d.y(), dz = d.z();
   int current = start;
-  double current_value = xs[current] * dx + ys[current] * dy + zs[current] * dz;
+  const Eigen::Vector3d& v = h.vertices[current];
+  double current_value = (v.x() * dx + v.y() * dy) + v.z() * dz;
   // Each step strictly increases the value, so at most vertex_count steps are taken.
   for (;;) {
-    int next = -1;
-    for (std::int32_t k = offsets[current]; k < offsets[current + 1]; ++k) {
-      const int j = adjacency[k];
-      const double value = xs[j] * dx + ys[j] * dy + zs[j] * dz;
-      if (value > current_value) {
-        current_value = value;
-        next = j;
-      }
+    const int first = slots[current], count = slots[current + 1] - first;
+    const double* xs = coords + 3 * first;
+    const double* ys = xs + count;
+    const double* zs = ys + count;
+#if defined(__SSE2__)
+    const __m128d vdx = _mm_set1_pd(dx), vdy = _mm_set1_pd(dy), vdz = _mm_set1_pd(dz);
+    __m128d m = _mm_set1_pd(-INFINITY);
+    for (int k = 0; k < count; k += 2) {
+      const __m128d value = _mm_add_pd(
+          _mm_add_pd(_mm_mul_pd(_mm_loadu_pd(xs + k), vdx), _mm_mul_pd(_mm_loadu_pd(ys + k), vdy)),
+          _mm_mul_pd(_mm_loadu_pd(zs + k), vdz));
+      m = _mm_max_pd(m, value);
     }
-    if (next < 0) return current;
-    current = next;
+    const double best = std::max(_mm_cvtsd_f64(m), _mm_cvtsd_f64(_mm_unpackhi_pd(m, m)));
+#else
+    double best = -INFINITY;
+    for (int k = 0; k < count; ++k) best = std::max(best, (xs[k] * dx + ys[k] * dy) + zs[k] * dz);
+#endif
+    if (!(best > current_value)) return current;
+    const auto value_at = [&](int k) { return (xs[k] * dx + ys[k] * dy) + zs[k] * dz; };
+    int k = 0;
+    while (k < count && value_at(k) != best) ++k;
+    if (k == count) {  // only if the compiler fused the scalar arithmetic differently: argmax
+      k = 0;
+      for (int j = 1; j < count; ++j) {
+        if (value_at(j) > value_at(k)) k = j;
+      }
+      if (!(value_at(k) > current_value)) return current;
+    }
+    current = index[first + k];
+    current_value = value_at(k);
   }
 }
 
@@ -207,7 +231,7 @@ struct HullCore {
   const Eigen::Vector3d& center() const { return data->center; }
   double outer_radius() const { return data->outer_radius; }
   double inner_radius() const { return data->inner_radius; }
-  Eigen::Vector3d support(const Eigen::Vector3d& d, int& index) const {
+  HULLCHECK_ALWAYS_INLINE Eigen::Vector3d support(const Eigen::Vector3d& d, int& index) const {
     const HullData& h = *data;
     if (h.vertex_count < static_cast<int>(ConvexHull::kHillClimbingThreshold)) {
       index = scan_support_index(h, d);
