@@ -323,19 +323,23 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   return answer;
 }
 
-/// R * x for a pose's rotation R, written out by columns (Eigen's products with a block of an
-/// Isometry3d are out-of-line calls in GCC).
+/// R * x for a pose's rotation R. Scalar code: Eigen's products with a block of an
+/// Isometry3d become out-of-line calls in GCC once the caller is large.
 HULLCHECK_ALWAYS_INLINE Eigen::Vector3d rotated(const Eigen::Isometry3d& pose,
                                                 const Eigen::Vector3d& x) {
-  const auto r = pose.linear();
-  return r.col(0) * x.x() + r.col(1) * x.y() + r.col(2) * x.z();
+  const Eigen::Matrix4d& m = pose.matrix();
+  return {m(0, 0) * x.x() + m(0, 1) * x.y() + m(0, 2) * x.z(),
+          m(1, 0) * x.x() + m(1, 1) * x.y() + m(1, 2) * x.z(),
+          m(2, 0) * x.x() + m(2, 1) * x.y() + m(2, 2) * x.z()};
 }
 
 /// R^T * x for a pose's rotation R: a world direction in the pose's local frame.
 HULLCHECK_ALWAYS_INLINE Eigen::Vector3d unrotated(const Eigen::Isometry3d& pose,
                                                   const Eigen::Vector3d& x) {
-  const auto r = pose.linear();
-  return {r.col(0).dot(x), r.col(1).dot(x), r.col(2).dot(x)};
+  const Eigen::Matrix4d& m = pose.matrix();
+  return {m(0, 0) * x.x() + m(1, 0) * x.y() + m(2, 0) * x.z(),
+          m(0, 1) * x.x() + m(1, 1) * x.y() + m(2, 1) * x.z(),
+          m(0, 2) * x.x() + m(1, 2) * x.y() + m(2, 2) * x.z()};
 }
 
 /// The Minkowski difference with B placed in A's frame (x_A = rotation * x_B + translation).
@@ -344,10 +348,14 @@ MinkowskiDifference<CoreA, CoreB> placed_difference(const CoreA& core_a,
                                                     const Eigen::Isometry3d& pose_a,
                                                     const CoreB& core_b,
                                                     const Eigen::Isometry3d& pose_b) {
+  const Eigen::Matrix4d& b = pose_b.matrix();
   Eigen::Matrix3d rotation;
-  for (int j = 0; j < 3; ++j) rotation.col(j) = unrotated(pose_a, pose_b.linear().col(j));
+  for (int j = 0; j < 3; ++j) {
+    rotation.col(j) = unrotated(pose_a, Eigen::Vector3d(b(0, j), b(1, j), b(2, j)));
+  }
   return MinkowskiDifference<CoreA, CoreB>(
-      core_a, core_b, rotation, unrotated(pose_a, pose_b.translation() - pose_a.translation()));
+      core_a, core_b, rotation,
+      unrotated(pose_a, Eigen::Vector3d(b(0, 3), b(1, 3), b(2, 3)) - pose_a.translation()));
 }
 
 /// What the tests before the boolean GJK decided.
