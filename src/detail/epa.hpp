@@ -31,6 +31,9 @@ struct EpaFace {
 
 struct EpaWorkspace {
   std::array<SimplexVertex, kEpaMaxVertices> vertices;
+  /// Core vertex indices behind each vertex's a and b (-1: unknown, or a curved core): hints
+  /// for the support calls along the normals of faces through them.
+  std::array<std::array<int, 2>, kEpaMaxVertices> core_index;
   std::array<EpaFace, kEpaMaxFaces> faces;
   /// Selection key per face slot: its plane offset, +infinity when removed or degenerate; kept
   /// contiguous so that finding the closest face is a tight scan.
@@ -94,6 +97,8 @@ bool epa_initial_tetrahedron(MD& md, Simplex& s, double epsilon, Eigen::Vector3d
     for (int i = 0; i < 6 && !grown; ++i) {
       const Eigen::Vector3d d = (i % 2 == 0 ? 1.0 : -1.0) * axes[i / 2];
       md.support(d, s.w[1], s.a[1], s.b[1]);
+      s.index_a[1] = md.index_a;
+      s.index_b[1] = md.index_b;
       grown = (s.w[1] - s.w[0]).norm() > epsilon;
     }
     if (!grown) {
@@ -113,6 +118,8 @@ bool epa_initial_tetrahedron(MD& md, Simplex& s, double epsilon, Eigen::Vector3d
     const Eigen::Vector3d directions[6] = {d1, -d1, d2, -d2, d1 + d2, -d1 - d2};
     for (int i = 0; i < 6 && !grown; ++i) {
       md.support(directions[i], s.w[2], s.a[2], s.b[2]);
+      s.index_a[2] = md.index_a;
+      s.index_b[2] = md.index_b;
       grown = (s.w[2] - s.w[0]).cross(u).norm() > epsilon;
     }
     if (!grown) {
@@ -129,6 +136,8 @@ bool epa_initial_tetrahedron(MD& md, Simplex& s, double epsilon, Eigen::Vector3d
       md.support(-n, s.w[3], s.a[3], s.b[3]);
       height = n.dot(s.w[3] - s.w[0]);
     }
+    s.index_a[3] = md.index_a;
+    s.index_b[3] = md.index_b;
     if (!(std::abs(height) > epsilon)) {
       flat_normal = n;
       return false;
@@ -153,13 +162,19 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
   // coordinates is ~1e-16 x scale; tolerance is ~1e-10 x scale).
   const double visibility_epsilon = 1e-4 * tolerance;
   int vertex_count = 4;
-  for (int i = 0; i < 4; ++i) ws.vertices[i] = s.vertex(i);
+  for (int i = 0; i < 4; ++i) {
+    ws.vertices[i] = s.vertex(i);
+    ws.core_index[i] = {s.index_a[i], s.index_b[i]};
+  }
   // Orient the tetrahedron so that (0,1,2) sees vertex 3 on its negative side.
   {
     const Eigen::Vector3d& p0 = ws.vertices[0].w;
     const double volume =
         (ws.vertices[1].w - p0).cross(ws.vertices[2].w - p0).dot(ws.vertices[3].w - p0);
-    if (volume > 0.0) std::swap(ws.vertices[1], ws.vertices[2]);
+    if (volume > 0.0) {
+      std::swap(ws.vertices[1], ws.vertices[2]);
+      std::swap(ws.core_index[1], ws.core_index[2]);
+    }
   }
   // Faces of tetrahedron (0,1,2),(0,3,1),(0,2,3),(1,3,2) with consistent outward winding.
   static constexpr int kTetFaces[4][3] = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
@@ -206,7 +221,11 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
       break;
     }
     SimplexVertex& w = ws.vertices[vertex_count];
-    md.support(closest.normal, w);
+    // The support climbs start at the face's newest vertex (its last; the expansion puts the
+    // new support point there): a support point of a nearby direction.
+    const std::array<int, 2>& hint = ws.core_index[closest.vertex[2]];
+    md.support(closest.normal, w.w, w.a, w.b, hint[0], hint[1]);
+    ws.core_index[vertex_count] = {md.index_a, md.index_b};
     const double support_offset = closest.normal.dot(w.w);
     if (support_offset - closest.offset <= tolerance) break;  // converged
     if (support_offset < stop_depth) {  // every point of the boundary is within that plane

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 
 #include "simplex.hpp"
+#include "support.hpp"
 
 namespace hullcheck::detail {
 
@@ -23,14 +24,16 @@ struct MinkowskiDifference {
       : a(core_a), b(core_b), rotation(b_to_a), translation(b_origin_in_a) {}
 
   /// Support point w = pa - pb of A - B in direction d (A's frame), with its parts.
+  /// `hint_a`, `hint_b`: vertex indices of support points in a nearby direction, or -1
+  /// (see support_near).
   void support(const Eigen::Vector3d& d, Eigen::Vector3d& w, Eigen::Vector3d& pa,
-               Eigen::Vector3d& pb) {
+               Eigen::Vector3d& pb, int hint_a = -1, int hint_b = -1) {
     // Written out by columns: Eigen's products with a transpose or a negated operand are
     // out-of-line calls in GCC.
-    pa = a.support(d, index_a);
+    pa = support_near(a, d, hint_a, index_a);
     const Eigen::Vector3d d_b(-rotation.col(0).dot(d), -rotation.col(1).dot(d),
                               -rotation.col(2).dot(d));
-    const Eigen::Vector3d sb = b.support(d_b, index_b);
+    const Eigen::Vector3d sb = support_near(b, d_b, hint_b, index_b);
     pb = rotation.col(0) * sb.x() + rotation.col(1) * sb.y() + rotation.col(2) * sb.z() +
          translation;
     w = pa - pb;

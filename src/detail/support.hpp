@@ -242,4 +242,28 @@ struct HullCore {
   }
 };
 
+/// core.support(d, index), given `hint`: the vertex index of a support point in a nearby
+/// direction (-1: none). Hulls that hill-climb with fewer than kNearHintLimit vertices start
+/// the climb there instead of at the cube map's vertex (EPA asks for supports along face
+/// normals whose vertices are such points): it saves the cell lookup and is as close; on finer
+/// hulls the cube map's start is closer in steps. Exact either way.
+constexpr int kNearHintLimit = 64;
+template <class Core>
+HULLCHECK_ALWAYS_INLINE Eigen::Vector3d support_near(const Core& core, const Eigen::Vector3d& d,
+                                                     int /*hint*/, int& index) {
+  return core.support(d, index);
+}
+HULLCHECK_ALWAYS_INLINE Eigen::Vector3d support_near(const HullCore& core, const Eigen::Vector3d& d,
+                                                     int hint, int& index) {
+  const HullData& h = *core.data;
+  // One unsigned comparison rejects -1 and any index out of range.
+  if (static_cast<unsigned>(hint) >= static_cast<unsigned>(h.vertex_count) ||
+      h.vertex_count < static_cast<int>(ConvexHull::kHillClimbingThreshold) ||
+      h.vertex_count >= kNearHintLimit) {
+    return core.support(d, index);
+  }
+  index = climb_support_index(h, d, hint);
+  return h.vertices[index];
+}
+
 }  // namespace hullcheck::detail
