@@ -6,10 +6,14 @@
 // the faces that see it (found by a walk from the closest face) and is joined to the horizon.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <hullcheck/query_result.hpp>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "minkowski.hpp"
 #include "simplex.hpp"
@@ -81,6 +85,37 @@ inline SubSimplex closest_on_face(const EpaWorkspace& ws, const EpaFace& face) {
   const Eigen::Vector3d points[3] = {ws.vertices[face.vertex[0]].w, ws.vertices[face.vertex[1]].w,
                                      ws.vertices[face.vertex[2]].w};
   return closest_on_triangle(points, 0, 1, 2);
+}
+
+/// Index of the first smallest finite key among keys[0, count), or -1 when none is finite.
+/// Two passes: the minimum (two keys per SSE2 instruction), then its first position. Face
+/// slots are few hundred at most; removed and degenerate faces have key +infinity.
+inline int closest_face(const double* keys, int count) {
+  double minimum = INFINITY;
+  int f = 0;
+#if defined(__SSE2__)
+  __m128d m0 = _mm_set1_pd(INFINITY), m1 = m0;
+  for (; f + 4 <= count; f += 4) {
+    m0 = _mm_min_pd(m0, _mm_loadu_pd(keys + f));
+    m1 = _mm_min_pd(m1, _mm_loadu_pd(keys + f + 2));
+  }
+  const __m128d m = _mm_min_pd(m0, m1);
+  minimum = std::min(_mm_cvtsd_f64(m), _mm_cvtsd_f64(_mm_unpackhi_pd(m, m)));
+#endif
+  for (; f < count; ++f) minimum = std::min(minimum, keys[f]);
+  for (f = 0; f < count; ++f) {
+    if (keys[f] == minimum && minimum < INFINITY) return f;
+  }
+  // No finite key, or a NaN key upset the minimum: the plain scan, which skips NaN.
+  int best = -1;
+  double best_key = INFINITY;
+  for (f = 0; f < count; ++f) {
+    if (keys[f] < best_key) {
+      best_key = keys[f];
+      best = f;
+    }
+  }
+  return best;
 }
 
 }  // namespace epa_internal
@@ -202,14 +237,7 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
   EpaFace result{};  // copy of the closest face: its slot may be reused by the expansion
   for (int iteration = 1;; ++iteration) {
     out.iterations = iteration;
-    best = -1;
-    double best_offset = INFINITY;
-    for (int f = 0; f < face_count; ++f) {
-      if (ws.key[f] < best_offset) {
-        best_offset = ws.key[f];
-        best = f;
-      }
-    }
+    best = epa_internal::closest_face(ws.key.data(), face_count);
     if (best < 0) {  // every face degenerate: cannot happen for a proper tetrahedron
       out.status = Status::kDegenerate;
       break;
