@@ -159,16 +159,11 @@ ConvexHull::ConvexHull(const std::vector<Eigen::Vector3d>& points) {
     neighbors[a].push_back(b);
     neighbors[b].push_back(a);
   }
-  data->adjacency_offsets.push_back(0);
-  for (auto& list : neighbors) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-    data->adjacency.insert(data->adjacency.end(), list.begin(), list.end());
-    data->adjacency_offsets.push_back(static_cast<std::int32_t>(data->adjacency.size()));
-  }
   data->neighbour_slots.push_back(0);
   for (int i = 0; i < n; ++i) {
-    std::vector<std::int32_t> list = neighbors[i];
+    std::vector<std::int32_t>& list = neighbors[i];
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
     if (list.size() % 2 != 0) list.push_back(i);  // pad: i's own value never beats it
     data->neighbour_index.insert(data->neighbour_index.end(), list.begin(), list.end());
     for (int axis = 0; axis < 3; ++axis) {
@@ -207,7 +202,7 @@ ConvexHull::ConvexHull(const std::vector<Eigen::Vector3d>& points) {
   constexpr int kTableSize = 6 * detail::HullData::kCells * detail::HullData::kCells;
   data->start_table.resize(kTableSize);
   // Each cell's support vertex by climbing from the previous cell's (exact, and cheap for
-  // hulls of many vertices); below the threshold the adjacency is not used, so scan.
+  // hulls of many vertices); below the threshold the neighbour lists are not used, so scan.
   int previous = 0;
   for (int cell = 0; cell < kTableSize; ++cell) {
     const Eigen::Vector3d d = detail::cube_map_direction(cell);
@@ -229,8 +224,13 @@ std::vector<int> ConvexHull::neighbors(int i) const {
   if (i < 0 || i >= static_cast<int>(vertex_count())) {
     throw InputError("ConvexHull::neighbors: vertex index " + std::to_string(i) + " out of range");
   }
-  return {data_->adjacency.begin() + data_->adjacency_offsets[i],
-          data_->adjacency.begin() + data_->adjacency_offsets[i + 1]};
+  std::vector<int> list;
+  for (std::int32_t slot = data_->neighbour_slots[i]; slot < data_->neighbour_slots[i + 1];
+       ++slot) {
+    const int j = data_->neighbour_index[slot];
+    if (j != i) list.push_back(j);  // not the padding
+  }
+  return list;
 }
 
 int ConvexHull::support_index(const Eigen::Vector3d& direction) const {

@@ -62,12 +62,11 @@ namespace detail {
 struct HullData {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<double> xs, ys, zs;  // vertices as structure of arrays, padded to a multiple of 4
-  std::vector<std::int32_t> adjacency_offsets;  // CSR: neighbours of i are
-  std::vector<std::int32_t> adjacency;          //   adjacency[offsets[i] .. offsets[i+1])
-  /// The same neighbour lists laid out for hill climbing: vertex i's neighbours occupy slots
-  /// [neighbour_slots[i], neighbour_slots[i+1]), an even count (padded with i itself), with
-  /// their indices in neighbour_index[slot] and their coordinates in one block per vertex
-  /// starting at neighbour_coords[3 * neighbour_slots[i]]: all x, then all y, then all z.
+  /// Vertex adjacency along hull edges, laid out for hill climbing: vertex i's neighbours
+  /// (ascending) occupy slots [neighbour_slots[i], neighbour_slots[i+1]), an even count (padded
+  /// with i itself), with their indices in neighbour_index[slot] and their coordinates in one
+  /// block per vertex starting at neighbour_coords[3 * neighbour_slots[i]]: all x, then all y,
+  /// then all z.
   std::vector<std::int32_t> neighbour_slots;
   std::vector<std::int32_t> neighbour_index;
   std::vector<double> neighbour_coords;
