@@ -33,10 +33,13 @@ struct MinkowskiDifference {
     pa = support_near(a, d, hint_a, index_a);
     const Eigen::Vector3d d_b(-rotation.col(0).dot(d), -rotation.col(1).dot(d),
                               -rotation.col(2).dot(d));
-    const Eigen::Vector3d sb = support_near(b, d_b, hint_b, index_b);
-    pb = rotation.col(0) * sb.x() + rotation.col(1) * sb.y() + rotation.col(2) * sb.z() +
-         translation;
+    pb = place_b(support_near(b, d_b, hint_b, index_b));
     w = pa - pb;
+  }
+  /// A point of B's frame in A's frame.
+  Eigen::Vector3d place_b(const Eigen::Vector3d& x) const {
+    return rotation.col(0) * x.x() + rotation.col(1) * x.y() + rotation.col(2) * x.z() +
+           translation;
   }
   void support(const Eigen::Vector3d& d, SimplexVertex& out) { support(d, out.w, out.a, out.b); }
 };

@@ -366,10 +366,9 @@ enum class Prelude {
   kContinue,     // run the boolean GJK from `first` (its first support point)
 };
 
-/// The first support point of A - B in A's frame, with its parts and vertex indices.
+/// The parts of the first support point of A - B, each in its own core's frame.
 struct FirstSupport {
-  Eigen::Vector3d a, b;  // b already in the world frame until placed by the caller
-  int index_a = -1, index_b = -1;
+  Eigen::Vector3d a, b;
 };
 
 /// Ball tests and the boolean GJK's first iteration, in the world frame: everything the
@@ -377,8 +376,7 @@ struct FirstSupport {
 /// pairs of a broad phase's output) never build it. The first search direction is the line
 /// from A's ball centre to B's (a point inside the difference near its middle: mesh origins can
 /// lie far from the mesh). `inner_test`: use the balls inside the shapes (intersect only).
-/// On kContinue, `first` holds the support points along that line: `a` in A's frame, `b` in
-/// the world frame.
+/// On kContinue, `first` holds the support points along that line.
 template <class CoreA, class CoreB>
 Prelude centre_line_prelude(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
                             const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
@@ -397,23 +395,22 @@ Prelude centre_line_prelude(const CoreA& core_a, double radius_a, const Eigen::I
   // Support of A along u and of B along -u; w = a - b, apart when u.w < -radius |u|.
   const Eigen::Vector3d d_a = unrotated(pose_a, u);
   const Eigen::Vector3d d_b = -unrotated(pose_b, u);
-  first.a = core_a.support(d_a, first.index_a);
-  const Eigen::Vector3d b = core_b.support(d_b, first.index_b);
+  int index = -1;  // the cores' vertex indices are not needed here
+  first.a = core_a.support(d_a, index);
+  first.b = core_b.support(d_b, index);
   const double uw =
-      d_a.dot(first.a) + d_b.dot(b) - u.dot(pose_b.translation() - pose_a.translation());
+      d_a.dot(first.a) + d_b.dot(first.b) - u.dot(pose_b.translation() - pose_a.translation());
   if (uw < 0.0) {
     return uw * uw > radius * radius * u.squaredNorm() ? Prelude::kApart : Prelude::kUndecided;
   }
-  first.b = rotated(pose_b, b) + pose_b.translation();
   return Prelude::kContinue;
 }
 
 /// The boolean GJK after centre_line_prelude's first iteration (kContinue), in A's frame.
 template <class MD, class V>
-BooleanVerdict boolean_gjk_after(MD& md, FirstSupport& first, const Eigen::Isometry3d& pose_a,
-                                 double radius, const QueryOptions& options, int& iterations,
-                                 V (&simplex)[4]) {
-  const Eigen::Vector3d b = unrotated(pose_a, first.b - pose_a.translation());
+BooleanVerdict boolean_gjk_after(MD& md, const FirstSupport& first, double radius,
+                                 const QueryOptions& options, int& iterations, V (&simplex)[4]) {
+  const Eigen::Vector3d b = md.place_b(first.b);
   simplex[0].set(first.a - b, first.a, b);
   return gjk_boolean_continue(md, b - first.a, 1, radius, options.max_gjk_iterations, iterations,
                               simplex);
@@ -434,7 +431,7 @@ bool run_intersect(const CoreA& core_a, double radius_a, const Eigen::Isometry3d
     int iterations = 0;
     boolean_gjk::PointOnly simplex[4];
     const BooleanVerdict verdict =
-        boolean_gjk_after(md, first, pose_a, radius_a + radius_b, options, iterations, simplex);
+        boolean_gjk_after(md, first, radius_a + radius_b, options, iterations, simplex);
     if (verdict != BooleanVerdict::kUndecided) return verdict == BooleanVerdict::kOverlapping;
   } else if (prelude != Prelude::kUndecided) {
     return prelude == Prelude::kOverlapping;
@@ -459,8 +456,8 @@ Answer run_penetration(const CoreA& core_a, double radius_a, const Eigen::Isomet
   if (prelude == Prelude::kContinue) {
     auto md = placed_difference(core_a, pose_a, core_b, pose_b);
     SimplexVertex tetrahedron[4];
-    const BooleanVerdict verdict = boolean_gjk_after(md, first, pose_a, radius_a + radius_b,
-                                                     options, answer.iterations, tetrahedron);
+    const BooleanVerdict verdict =
+        boolean_gjk_after(md, first, radius_a + radius_b, options, answer.iterations, tetrahedron);
     if (verdict == BooleanVerdict::kApart) return answer;
     if (verdict == BooleanVerdict::kOverlapping) {
       add_penetration(md, enclosing_simplex(tetrahedron), radius_a, radius_b, pose_a,
