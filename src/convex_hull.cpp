@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <hullcheck/convex_hull.hpp>
 #include <hullcheck/errors.hpp>
+#include <hullcheck/limits.hpp>
 #include <string>
 
 #include "detail/support.hpp"
@@ -122,6 +123,11 @@ ConvexHull::ConvexHull(const std::vector<Eigen::Vector3d>& points) {
     if (!points[i].allFinite()) {
       throw InputError("ConvexHull: point " + std::to_string(i) +
                        " has a NaN or infinite coordinate");
+    }
+    if (!(points[i].cwiseAbs().maxCoeff() <= kMaxLength)) {
+      throw InputError("ConvexHull: point " + std::to_string(i) +
+                       " has a coordinate of magnitude " +
+                       std::to_string(points[i].cwiseAbs().maxCoeff()) + " m, beyond 1e6 m");
     }
   }
   Hull hull;

@@ -4,6 +4,8 @@
 #include <hullcheck/pose.hpp>
 #include <string>
 
+#include "detail/checks.hpp"
+
 namespace hullcheck {
 
 Eigen::Matrix3d rotation_from_xyz_angles(double gx, double gy, double gz) {
@@ -25,21 +27,23 @@ Eigen::Isometry3d pose_from_xyz_angles(const Eigen::Vector3d& position,
 }
 
 void validate_pose(const Eigen::Isometry3d& pose, const char* what) {
-  // Hand-written: this runs twice per query, so no temporaries and no transcendental calls.
+  if (detail::pose_is_rigid(pose)) return;
+  // Rejected: say why (this path is not hot).
   const auto& m = pose.matrix();
-  // x * 0 is 0 for every finite x and NaN for NaN or infinity: one branch for all 12 entries.
-  if (!((m.topRows<3>() * 0.0).sum() == 0.0)) {
+  if (!m.topRows<3>().allFinite()) {
     throw InputError(std::string(what) + ": pose contains NaN or infinity");
   }
-  const Eigen::Vector3d x = m.block<3, 1>(0, 0), y = m.block<3, 1>(0, 1), z = m.block<3, 1>(0, 2);
-  const double error = std::max({std::abs(x.squaredNorm() - 1.0), std::abs(y.squaredNorm() - 1.0),
-                                 std::abs(z.squaredNorm() - 1.0), std::abs(x.dot(y)),
-                                 std::abs(x.dot(z)), std::abs(y.dot(z))});
-  if (error > 1e-6 || x.cross(y).dot(z) < 0.0) {
-    throw InputError(std::string(what) +
-                     ": pose rotation is not a proper rotation matrix (orthonormality error " +
-                     std::to_string(error) + ", det " + std::to_string(x.cross(y).dot(z)) + ")");
+  const Eigen::Vector3d t = pose.translation();
+  if (t.cwiseAbs().maxCoeff() > kMaxLength) {
+    throw InputError(std::string(what) + ": pose translation component " +
+                     std::to_string(t.cwiseAbs().maxCoeff()) + " m exceeds 1e6 m");
   }
+  const Eigen::Matrix3d r = pose.linear();
+  const double error = (r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  throw InputError(std::string(what) +
+                   ": pose rotation is not a proper rotation matrix (orthonormality error " +
+                   std::to_string(error) + ", det " + std::to_string(r.determinant()) +
+                   "; scaled, sheared and reflected matrices are not rigid)");
 }
 
 }  // namespace hullcheck

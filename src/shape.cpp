@@ -5,8 +5,34 @@
 
 namespace hullcheck {
 
+using detail::require_length;
+
+// The primitives' constructors check their arguments, but their fields are public: checked
+// again here, where they become a Shape (a few comparisons).
+Shape::Shape(const Sphere& s) : geometry_(s) { require_length(s.radius, "Shape: Sphere radius"); }
+
+Shape::Shape(const Capsule& c) : geometry_(c) {
+  require_length(c.radius, "Shape: Capsule radius");
+  require_length(2.0 * c.half_length, "Shape: Capsule length");
+}
+
+Shape::Shape(const Box& b) : geometry_(b) {
+  require_length(2.0 * b.half_extents.x(), "Shape: Box size x");
+  require_length(2.0 * b.half_extents.y(), "Shape: Box size y");
+  require_length(2.0 * b.half_extents.z(), "Shape: Box size z");
+}
+
+Shape::Shape(const Cylinder& c) : geometry_(c) {
+  require_length(c.radius, "Shape: Cylinder radius");
+  require_length(2.0 * c.half_length, "Shape: Cylinder length");
+}
+
+// ConvexHull's data is immutable and checked by its constructor.
+Shape::Shape(const ConvexHull& h) : geometry_(h) {}
+
 Shape Shape::inflated(double margin) const {
   detail::require_non_negative(margin, "Shape margin");
+  require_length(margin_ + margin, "Shape margin (total)");
   Shape copy = *this;
   copy.margin_ += margin;
   return copy;

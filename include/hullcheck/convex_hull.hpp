@@ -26,7 +26,8 @@ struct HullData;
 /// precomputed support vertex of a nearby direction (a cube map of 864 directions).
 ///
 /// Copying is cheap: copies share the immutable hull data. Thread-safe for concurrent reads.
-/// Throws InputError for an empty point set or a non-finite coordinate (naming the point index).
+/// Throws InputError for an empty point set, or a coordinate that is not finite or exceeds
+/// kMaxLength (1e6 m) in magnitude (naming the point index).
 class ConvexHull {
  public:
   /// Hull vertex count from which support uses hill climbing instead of a linear scan.

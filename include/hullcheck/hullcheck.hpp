@@ -4,6 +4,7 @@
 
 #include <hullcheck/convex_hull.hpp>
 #include <hullcheck/errors.hpp>
+#include <hullcheck/limits.hpp>
 #include <hullcheck/pose.hpp>
 #include <hullcheck/primitives.hpp>
 #include <hullcheck/proximity_pair.hpp>

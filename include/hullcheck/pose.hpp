@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <hullcheck/limits.hpp>
 
 namespace hullcheck {
 
@@ -13,9 +14,10 @@ Eigen::Matrix3d rotation_from_xyz_angles(double gx, double gy, double gz);
 Eigen::Isometry3d pose_from_xyz_angles(const Eigen::Vector3d& position,
                                        const Eigen::Vector3d& angles);
 
-/// Throws InputError naming `what` when `pose` has a non-finite entry or its linear part is not a
-/// rotation (|R^T R - I| > 1e-6 or det R < 0). ProximityPair calls it on every pose it is
-/// given; the free queries check only finiteness (a few instructions instead of ~100).
+/// Throws InputError naming `what` when `pose` is not a rigid placement hullcheck accepts: a
+/// non-finite entry, a translation component beyond kMaxLength (1e6 m), or a linear part that is
+/// not a rotation to kRotationTolerance (1e-6: scaled, sheared, reflected or zero matrices).
+/// Every public query and ProximityPair check their poses with the same test (~30 flops).
 void validate_pose(const Eigen::Isometry3d& pose, const char* what);
 
 }  // namespace hullcheck

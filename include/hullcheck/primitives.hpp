@@ -1,5 +1,7 @@
 // Exact primitive shapes. Each is centred on its local origin; lengths in metres (any unit works,
 // as long as it is used consistently). Axis-symmetric shapes have their axis along local z.
+// Every constructor throws InputError unless each length is finite, >= 0 and at most
+// kMaxLength (1e6 m, limits.hpp); Shape checks the public fields again when it is built.
 #pragma once
 
 #include <Eigen/Core>

@@ -3,8 +3,10 @@
 // Frames: each shape is given in its local frame and placed by its pose (local -> world);
 // every returned point and vector is in the world frame. Units: those of the shapes (metres).
 // Tolerances: see QueryOptions. Thread-safety: all functions are reentrant and allocate nothing.
-// Poses must be rigid (rotation + translation; validate_pose() checks that, and ProximityPair
-// does on every set). Errors: a pose with NaN/inf throws InputError.
+// Errors: every query checks both poses with validate_pose()'s test (finite, translation within
+// kMaxLength = 1e6 m, linear part a rotation to 1e-6) and throws InputError naming the pose
+// otherwise; shapes are validated when constructed (limits.hpp). For valid input no query
+// returns NaN, and a status kConverged is a proof to the stated tolerance.
 #pragma once
 
 #include <Eigen/Geometry>

@@ -4,7 +4,7 @@
 namespace hullcheck {
 
 /// Tolerance model. Every tolerance is relative: it is multiplied by the query's scale,
-///   scale = max(extent(A), extent(B)),
+///   scale = max(extent(A), extent(B), kMinScale = 1e-6 m),
 /// where extent is the largest distance of a point of the shape (margin included) from its local
 /// origin. Answers are exact up to `relative_tolerance * scale`:
 ///  - distance and depth are within that of the true value (for polytopes and exact primitives);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <hullcheck/convex_hull.hpp>
+#include <hullcheck/limits.hpp>
 #include <hullcheck/primitives.hpp>
 #include <variant>
 
@@ -14,18 +15,23 @@ enum class ShapeKind { kSphere, kCapsule, kBox, kCylinder, kConvexHull };
 /// direction (the Minkowski sum with a ball of that radius, e.g. link padding). Implicitly
 /// constructible from each primitive and from ConvexHull, so queries accept them directly.
 /// Cheap to copy (hull data is shared). Thread-safe for concurrent reads.
+///
+/// The primitives' fields are public, so each constructor checks them again: every dimension
+/// finite, >= 0 and at most kMaxLength (1e6 m); otherwise InputError naming the field. A Shape
+/// therefore always holds valid geometry, and its geometry cannot be changed afterwards.
 class Shape {
  public:
   using Geometry = std::variant<Sphere, Capsule, Box, Cylinder, ConvexHull>;
 
-  Shape(const Sphere& s) : geometry_(s) {}      // NOLINT(google-explicit-constructor)
-  Shape(const Capsule& c) : geometry_(c) {}     // NOLINT(google-explicit-constructor)
-  Shape(const Box& b) : geometry_(b) {}         // NOLINT(google-explicit-constructor)
-  Shape(const Cylinder& c) : geometry_(c) {}    // NOLINT(google-explicit-constructor)
-  Shape(const ConvexHull& h) : geometry_(h) {}  // NOLINT(google-explicit-constructor)
+  Shape(const Sphere& s);      // NOLINT(google-explicit-constructor)
+  Shape(const Capsule& c);     // NOLINT(google-explicit-constructor)
+  Shape(const Box& b);         // NOLINT(google-explicit-constructor)
+  Shape(const Cylinder& c);    // NOLINT(google-explicit-constructor)
+  Shape(const ConvexHull& h);  // NOLINT(google-explicit-constructor)
 
-  /// The same geometry grown by `margin` metres (>= 0, finite; throws InputError otherwise).
-  /// Margins add: inflated(a).inflated(b) has margin a + b.
+  /// The same geometry grown by `margin` metres (finite, >= 0, and the total margin at most
+  /// kMaxLength; throws InputError otherwise). Margins add: inflated(a).inflated(b) has margin
+  /// a + b.
   Shape inflated(double margin) const;
 
   ShapeKind kind() const { return static_cast<ShapeKind>(geometry_.index()); }

@@ -69,7 +69,9 @@ inline void set_plane(EpaWorkspace& ws, EpaFace& f) {
   const Eigen::Vector3d e2 = ws.vertices[f.vertex[2]].w - p0;
   Eigen::Vector3d n = e1.cross(e2);
   const double length_squared = n.squaredNorm();
-  f.degenerate = !(length_squared > 1e-24 * e1.squaredNorm() * e2.squaredNorm());
+  // |e1 x e2| > 1e-12 |e1| |e2|, written without the product of squares (which overflows for
+  // coordinates beyond ~1e77 and underflows below ~1e-77).
+  f.degenerate = !(std::sqrt(length_squared) > 1e-12 * (e1.norm() * e2.norm()));
   if (f.degenerate) {
     f.normal = Eigen::Vector3d::UnitZ();
     f.offset = INFINITY;
@@ -85,6 +87,26 @@ inline SubSimplex closest_on_face(const EpaWorkspace& ws, const EpaFace& face) {
   const Eigen::Vector3d points[3] = {ws.vertices[face.vertex[0]].w, ws.vertices[face.vertex[1]].w,
                                      ws.vertices[face.vertex[2]].w};
   return closest_on_triangle(points, 0, 1, 2);
+}
+
+/// Barycentric weights of `p`, a point of the plane of triangle (w0, w1, w2) with unit normal
+/// `n`, from signed areas on the coordinate plane most orthogonal to n (weights outside [0, 1]
+/// when p lies outside the triangle; they sum to 1).
+inline void plane_weights(const Eigen::Vector3d& w0, const Eigen::Vector3d& w1,
+                          const Eigen::Vector3d& w2, const Eigen::Vector3d& n,
+                          const Eigen::Vector3d& p, double (&lambda)[3]) {
+  int k = 0;
+  if (std::abs(n.y()) > std::abs(n(k))) k = 1;
+  if (std::abs(n.z()) > std::abs(n(k))) k = 2;
+  const int x = (k + 1) % 3, y = (k + 2) % 3;
+  const auto area = [x, y](const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                           const Eigen::Vector3d& c) {
+    return (b(x) - a(x)) * (c(y) - a(y)) - (b(y) - a(y)) * (c(x) - a(x));
+  };
+  const double total = area(w0, w1, w2);
+  lambda[1] = area(w0, p, w2) / total;
+  lambda[2] = area(w0, w1, p) / total;
+  lambda[0] = 1.0 - lambda[1] - lambda[2];
 }
 
 /// Index of the first smallest finite key among keys[0, count), or -1 when none is finite.
@@ -342,13 +364,18 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
   if (best >= 0) {
     // Witnesses: several faces can share the nearest plane (coplanar triangles of one polytope
     // face); take the one whose triangle holds the origin's projection, i.e. whose closest
-    // point to the origin is nearest.
+    // point to the origin is nearest. Only faces of that plane qualify: a face of another
+    // plane at the same distance (symmetric differences, e.g. identical shapes) has another
+    // normal, and its witnesses would contradict the one reported. Depth and normal are those
+    // of the face the witnesses come from, so point_a - point_b = depth * normal holds by
+    // construction (up to rounding, when the projection lies in the triangle).
     EpaFace face = result;
     SubSimplex sub = closest_on_face(ws, face);
     if (out.status == Status::kConverged && sub.size < 3) {  // projection outside the face
       for (int f = 0; f < face_count; ++f) {
         if (!(ws.key[f] <= result.offset + tolerance)) continue;  // removed, degenerate or far
         const EpaFace& candidate = ws.faces[f];
+        if (!(candidate.normal.dot(result.normal) > 1.0 - 1e-9)) continue;  // another plane
         const SubSimplex c = closest_on_face(ws, candidate);
         if (c.distance_squared < sub.distance_squared) {
           sub = c;
@@ -356,14 +383,21 @@ EpaOutput epa(MD& md, const Simplex& s, double tolerance, int max_iterations, Ep
         }
       }
     }
-    out.depth = std::max(0.0, result.offset);
-    out.normal = result.normal;
+    out.depth = std::max(0.0, face.offset);
+    out.normal = face.normal;
+    // Witnesses: the weights of the foot of the perpendicular, offset * normal, in the face's
+    // triangle (extrapolated by rounding when the foot lies just outside it), so that
+    // point_a - point_b = depth * normal by construction.
+    double lambda[3];
+    epa_internal::plane_weights(ws.vertices[face.vertex[0]].w, ws.vertices[face.vertex[1]].w,
+                                ws.vertices[face.vertex[2]].w, face.normal,
+                                face.offset * face.normal, lambda);
     out.point_a.setZero();
     out.point_b.setZero();
-    for (int i = 0; i < sub.size; ++i) {
-      const SimplexVertex& v = ws.vertices[face.vertex[sub.index[i]]];
-      out.point_a += sub.lambda[i] * v.a;
-      out.point_b += sub.lambda[i] * v.b;
+    for (int i = 0; i < 3; ++i) {
+      const SimplexVertex& v = ws.vertices[face.vertex[i]];
+      out.point_a += lambda[i] * v.a;
+      out.point_b += lambda[i] * v.b;
     }
   }
   return out;

@@ -104,7 +104,9 @@ GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int ma
         lower = vw / std::sqrt(best_distance_squared);
       }
       if (goal != GjkGoal::kDistance && lower > radius) break;  // separating plane found
-      if (lower >= stop_distance) {
+      // A lower bound proves a signed distance only when it proves the cores apart (lower > 0):
+      // overlapping cores have core distance 0 whatever their depth.
+      if (lower > 0.0 && lower >= stop_distance) {
         out.status = Status::kAboveCutoff;
         break;
       }
@@ -178,6 +180,13 @@ GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int ma
   out.v = v;
   out.distance = std::sqrt(best_distance_squared);
   out.lower_bound = std::min(lower, out.distance);
+  if (!out.cores_overlap && !(out.lower_bound > 0.0) && out.distance <= tolerance) {
+    // |v| within the tolerance of the origin and no support plane separating the cores: they
+    // are not proven apart, whichever test stopped the loop (a warm-started simplex can begin
+    // there). The sign is decided by the caller's overlap path (EPA), never by reading |v| as
+    // a separation.
+    out.cores_overlap = true;
+  }
   return out;
 }
 

@@ -2,6 +2,7 @@
 // overlap. Templated on the two core types so support functions inline.
 #pragma once
 
+#include <hullcheck/limits.hpp>
 #include <hullcheck/proximity_pair.hpp>
 #include <hullcheck/query_options.hpp>
 #include <hullcheck/query_result.hpp>
@@ -117,7 +118,8 @@ inline Simplex enclosing_simplex(const SimplexVertex (&tetrahedron)[4]) {
 template <class CoreA, class CoreB>
 double query_tolerance(const CoreA& core_a, double radius_a, const CoreB& core_b, double radius_b,
                        const Eigen::Vector3d& translation, const QueryOptions& options) {
-  const double scale = std::max(core_extent(core_a) + radius_a, core_extent(core_b) + radius_b);
+  const double scale =
+      std::max({core_extent(core_a) + radius_a, core_extent(core_b) + radius_b, kMinScale});
   const double rounding =
       16.0 * std::numeric_limits<double>::epsilon() * (translation.norm() + 2.0 * scale);
   return std::max(options.relative_tolerance * scale, rounding);

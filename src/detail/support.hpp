@@ -202,9 +202,12 @@ inline int cube_map_cell(const Eigen::Vector3d& d) {
   }
   if (!(m > 0.0)) return 0;
   const double scale = 0.5 * k / m;  // u/m in [-1, 1] -> [0, k]
-  const int row = std::min(k - 1, static_cast<int>((u + m) * scale));
-  const int column = std::min(k - 1, static_cast<int>((v + m) * scale));
-  return (face * k + row) * k + column;
+  // Clamped in floating point before the conversion, so that a NaN (a NaN or infinite
+  // component beside a finite largest one) lands in cell 0 of the face, never out of range.
+  const auto bin = [](double x) {
+    return static_cast<int>(x >= 0.0 ? std::min(x, static_cast<double>(k - 1)) : 0.0);
+  };
+  return (face * k + bin((u + m) * scale)) * k + bin((v + m) * scale);
 }
 
 /// Centre direction of a cube-map cell (inverse of cube_map_cell).
