@@ -167,6 +167,28 @@ TEST(InputHardening, HugeCylinderSphereAndOriginsAreRejected) {
                   {"joint 'hold'", "<origin xyz> z", "-5e+06"});
 }
 
+TEST(InputHardening, HugeJointLimitsAndMimicCoefficientsAreRejected) {
+  const std::string two_links = link("root") + link("body") + link("tip");
+  const auto revolute = [](const std::string& name, const std::string& parent,
+                           const std::string& child, const std::string& extra) {
+    return "  <joint name=\"" + name + "\" type=\"revolute\"><parent link=\"" + parent +
+           "\"/><child link=\"" + child + "\"/><axis xyz=\"0 0 1\"/>" + extra + "</joint>\n";
+  };
+  const std::string limit = "<limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>";
+  expect_contains(
+      load_error(robot(two_links +
+                       revolute("swing", "root", "body",
+                                "<limit lower=\"-1\" upper=\"1e300\" effort=\"1\" "
+                                "velocity=\"1\"/>") +
+                       revolute("turn", "body", "tip", limit))),
+      {"URDF 'probe.urdf'", "joint 'swing'", "<limit upper>", "at most 1e+06 rad", "1e+300"});
+  expect_contains(
+      load_error(robot(two_links + revolute("swing", "root", "body", limit) +
+                       revolute("turn", "body", "tip",
+                                limit + "<mimic joint=\"swing\" multiplier=\"1e300\"/>"))),
+      {"joint 'turn'", "<mimic multiplier>", "at most 1e+06 in magnitude"});
+}
+
 TEST(InputHardening, MeshVertexBeyondTheRangeAfterScaleNamesMesh) {
   const TempDir dir("huge_vertex");
   dir.write("big.stl",
@@ -418,6 +440,11 @@ TEST(InputHardening, MeshLimitsAreConfigurable) {
   small.max_faces = 2;
   expect_contains(input_error_of([&] { read_mesh_vertices(obj, Eigen::Vector3d::Ones(), small); }),
                   {"quad.obj", "face count 3 exceeds the limit 2", "MeshLimits::max_faces"});
+  small = MeshLimits{};
+  small.max_memory_bytes = 1000;  // the file's ~60 bytes make an estimate of 64 x its size
+  expect_contains(input_error_of([&] { read_mesh_vertices(obj, Eigen::Vector3d::Ones(), small); }),
+                  {"quad.obj", "estimated memory (bytes) for the file size",
+                   "exceeds the limit 1000", "MeshLimits::max_memory_bytes"});
   // Through the robot loader: RobotLoadOptions::mesh_limits.
   RobotLoadOptions options;
   options.mesh_limits.max_file_bytes = 16;

@@ -96,6 +96,22 @@ std::vector<Eigen::Vector3d> distinct_points(const std::vector<Eigen::Vector3d>&
   return out;
 }
 
+// The URDF element name of a geometry type.
+const char* geometry_tag(int type) {
+  switch (type) {
+    case urdf::Geometry::SPHERE:
+      return "sphere";
+    case urdf::Geometry::BOX:
+      return "box";
+    case urdf::Geometry::CYLINDER:
+      return "cylinder";
+    case urdf::Geometry::MESH:
+      return "mesh";
+    default:
+      return "geometry";
+  }
+}
+
 // Throws unless every vertex coordinate is within the loaders' length range (m).
 void check_mesh_extent(const std::vector<Eigen::Vector3d>& vertices, const std::string& what) {
   for (const Eigen::Vector3d& v : vertices) {
@@ -183,9 +199,11 @@ class Loader {
           throw InputError("unknown geometry type");
       }
     } catch (const InputError& e) {
+      // The loader's own errors carry the prefix already; the Shape constructors' get it once,
+      // with the element.
       const std::string what = e.what();
       if (what.rfind("URDF '", 0) == 0) throw;
-      throw InputError(where + ": " + what);
+      throw InputError(where + ": <" + geometry_tag(g.type) + ">: " + what);
     }
     return out;
   }
@@ -311,9 +329,15 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const std::strin
             joint.lower > joint.upper) {
           throw InputError(jwhere + ": <limit> lower must be <= upper, both finite");
         }
+        const char* unit = joint.type == JointType::kRevolute ? "rad" : "m";
+        detail::check_joint_value(joint.lower, jwhere + ": <limit lower>", unit);
+        detail::check_joint_value(joint.upper, jwhere + ": <limit upper>", unit);
       }
       if (uj.limits && uj.limits->velocity > 0.0) joint.max_velocity = uj.limits->velocity;
       if (uj.mimic && joint.type != JointType::kFixed) {
+        detail::check_joint_value(uj.mimic->multiplier, jwhere + ": <mimic multiplier>", "");
+        detail::check_joint_value(uj.mimic->offset, jwhere + ": <mimic offset>",
+                                  joint.type == JointType::kPrismatic ? "m" : "rad");
         mimics[joint.name] = {uj.mimic->joint_name, uj.mimic};
       }
       const int joint_id = static_cast<int>(model.joints_.size());
