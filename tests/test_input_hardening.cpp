@@ -408,6 +408,37 @@ TEST(InputHardening, ColladaNodeInstancingIsBoundedAndAcyclic) {
                   {"loop.dae", "<instance_node> references form a cycle"});
 }
 
+TEST(InputHardening, ColladaNodeDepthIsBoundedAlsoWhereANodeIsInstancedTwice) {
+  // c0 -> c1 -> ... -> c199 through <instance_node>: 200 levels. Instanced near the top it
+  // fits the 256-level bound; instanced again below 80 nested nodes it does not (assimp walks
+  // the hierarchy recursively).
+  std::string library = "<library_nodes>\n";
+  for (int i = 0; i < 200; ++i) {
+    library += "<node id=\"c" + std::to_string(i) + "\">" +
+               (i + 1 < 200 ? "<instance_node url=\"#c" + std::to_string(i + 1) + "\"/>"
+                            : "<instance_geometry url=\"#g\"/>") +
+               "</node>\n";
+  }
+  library += "</library_nodes>\n";
+  std::string nested;
+  for (int i = 0; i < 80; ++i) nested += "<node>";
+  nested += "<instance_node url=\"#c0\"/>";
+  for (int i = 0; i < 80; ++i) nested += "</node>";
+  std::string text = collada(kTriangle, library);
+  const std::string scene_node = "<node id=\"n\"><instance_geometry url=\"#g\"/></node>";
+  const TempDir dir("dae_depth");
+  std::string shallow = text;
+  shallow.replace(shallow.find(scene_node), scene_node.size(),
+                  "<node><instance_node url=\"#c0\"/></node>");
+  const std::string ok = dir.write("shallow.dae", shallow).string();
+  EXPECT_EQ(read_mesh_vertices(ok, Eigen::Vector3d::Ones()).size(), 3u);
+  text.replace(text.find(scene_node), scene_node.size(),
+               "<node><instance_node url=\"#c0\"/></node>" + nested);
+  const std::string deep = dir.write("deep.dae", text).string();
+  expect_contains(input_error_of([&] { read_mesh_vertices(deep, Eigen::Vector3d::Ones()); }),
+                  {"deep.dae", "deeper than 256 levels"});
+}
+
 TEST(InputHardening, BinaryStlDeclaringMoreFacetsThanItHolds) {
   const TempDir dir("stl_bomb");
   std::string bytes(84 + 50, '\0');

@@ -203,7 +203,7 @@ class NodeExpansion {
       for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c != nullptr;
            c = c->NextSiblingElement()) {
         if (std::strcmp(c->Name(), "node") == 0) {
-          total = add_sat(total, expanded(c, 1));
+          total = add_sat(total, expanded(c, 1).count);
         } else {
           todo.push_back(c);
         }
@@ -227,39 +227,54 @@ class NodeExpansion {
     }
   }
 
-  // Nodes of the subtree of `node` after instancing; `depth` is its depth in that tree.
-  std::uint64_t expanded(const tinyxml2::XMLElement* node, std::size_t depth) {
-    if (depth > kMaxNodeDepth) {
-      fail(path_, "node hierarchy (with <instance_node>) is deeper than " +
-                      std::to_string(kMaxNodeDepth) + " levels");
-    }
+  // Node count and height (1 for a leaf) of the subtree of `node` after instancing.
+  struct Subtree {
+    std::uint64_t count = 0;
+    std::size_t height = 0;
+  };
+
+  void check_depth(std::size_t depth) const {
+    if (depth <= kMaxNodeDepth) return;
+    fail(path_, "node hierarchy (with <instance_node>) is deeper than " +
+                    std::to_string(kMaxNodeDepth) + " levels");
+  }
+
+  // The subtree of `node`, which sits at `depth` in the expanded tree (memoised: a node
+  // instanced in many places is counted once per place but expanded once).
+  Subtree expanded(const tinyxml2::XMLElement* node, std::size_t depth) {
+    check_depth(depth);
     const auto memo = memo_.find(node);
     if (memo != memo_.end()) {
-      if (memo->second == kInProgress) fail(path_, "<instance_node> references form a cycle");
+      if (memo->second.height == 0) fail(path_, "<instance_node> references form a cycle");
+      check_depth(depth + memo->second.height - 1);
       return memo->second;
     }
-    memo_[node] = kInProgress;
-    std::uint64_t total = 1;
+    memo_[node] = Subtree{};  // height 0: in progress
+    Subtree out{1, 1};
+    const auto add = [&](const tinyxml2::XMLElement* child) {
+      const Subtree sub = expanded(child, depth + 1);
+      out.count = add_sat(out.count, sub.count);
+      out.height = std::max(out.height, sub.height + 1);
+    };
     for (const tinyxml2::XMLElement* c = node->FirstChildElement(); c != nullptr;
          c = c->NextSiblingElement()) {
       if (std::strcmp(c->Name(), "node") == 0) {
-        total = add_sat(total, expanded(c, depth + 1));
+        add(c);
       } else if (std::strcmp(c->Name(), "instance_node") == 0) {
         const char* url = c->Attribute("url");
         const auto target = url != nullptr && url[0] == '#' ? by_id_.find(url + 1) : by_id_.end();
-        if (target != by_id_.end()) total = add_sat(total, expanded(target->second, depth + 1));
+        if (target != by_id_.end()) add(target->second);
       }
-      if (total > limits_.max_nodes) break;
+      if (out.count > limits_.max_nodes) break;
     }
-    memo_[node] = total;
-    return total;
+    memo_[node] = out;
+    return out;
   }
 
-  static constexpr std::uint64_t kInProgress = std::numeric_limits<std::uint64_t>::max();
   const std::string& path_;
   const MeshLimits& limits_;
   std::map<std::string, const tinyxml2::XMLElement*> by_id_;
-  std::map<const tinyxml2::XMLElement*, std::uint64_t> memo_;
+  std::map<const tinyxml2::XMLElement*, Subtree> memo_;
 };
 
 // COLLADA: every declared count is backed by the file and within the limits, the estimated
