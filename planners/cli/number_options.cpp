@@ -44,4 +44,18 @@ CLI::Validator integer_in(long long low, long long high) {
       "INT in " + range);
 }
 
+CLI::Validator unsigned_64() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        errno = 0;
+        const bool digits =
+            !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        if (digits) std::strtoull(text.c_str(), &end, 10);
+        if (digits && errno == 0) return "";
+        return "must be an integer in [0, 18446744073709551615] (got '" + text + "')";
+      },
+      "UINT64");
+}
+
 }  // namespace hullcheck::cli

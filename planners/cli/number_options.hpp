@@ -14,4 +14,7 @@ CLI::Validator finite_in(double low, double high, bool open_low = false);
 /// Accepts an integer n with low <= n <= high.
 CLI::Validator integer_in(long long low, long long high);
 
+/// Accepts a non-negative integer that fits 64 bits (digits only: "-1" would wrap silently).
+CLI::Validator unsigned_64();
+
 }  // namespace hullcheck::cli

@@ -24,7 +24,8 @@ void add_srdf_command(CLI::App& app) {
       ->add_option("--samples", settings->matrix.samples,
                    "Random configurations to sample (default 10000)")
       ->check(integer_in(1, 1000000000));
-  command->add_option("--seed", settings->matrix.seed, "Sampler seed (default 1)");
+  command->add_option("--seed", settings->matrix.seed, "Sampler seed (default 1)")
+      ->check(unsigned_64());
   command
       ->add_option("--always-fraction", settings->matrix.always_fraction,
                    "Fraction of samples in collision that makes a pair 'Always' (0.95)")

@@ -146,6 +146,8 @@ expect "benchmark --memory -5 is a usage error" 1 "" "--memory: must be a finite
   "$bin" benchmark --robot "$urdf" --problems "$arm/problems" --log "$tmp/x.log" --memory -5
 expect "srdf --always-fraction nan is a usage error" 1 "" "--always-fraction: must be a finite" -- \
   "$bin" srdf --robot "$urdf" --always-fraction nan
+expect "srdf --seed -1 is a usage error" 1 "" "--seed: must be an integer in \\[0, " -- \
+  "$bin" srdf --robot "$urdf" --seed -1 --samples 1
 expect "--padding nan is a usage error" 1 "" "--padding: must be a finite number" -- \
   "$bin" inspect --robot "$urdf" --padding nan
 printf 'joint1,joint2,joint3,joint4,joint5,joint6,joint7\n0,0,0,-1.3,0,1,0\n1e308,0,0,-1.3,0,1,0\n' \
