@@ -213,16 +213,21 @@ TEST_F(OwnArmSpace, ContinuousJointWrapsIntoMinusPiPi) {
 }
 
 TEST_F(OwnArmSpace, BoundedJointsAreNotClamped) {
-  // Data sets hold values slightly outside the limits: they are kept, and OMPL sees them as out
-  // of bounds (planners then reject such states as starts, as MoveIt does).
+  // Data sets hold values slightly outside the limits: within RobotModel::kLimitTolerance they
+  // are kept, and OMPL sees them as out of bounds (planners then reject such states as starts,
+  // as MoveIt does); farther out, a group value is an InputError naming the joint (a value far
+  // outside would make motion checks crawl).
   Eigen::VectorXd q = fixed_;
-  q[group_[0]] = 3.2;  // beyond 2.9671
+  const double beyond = 2.9671 + 0.5 * RobotModel::kLimitTolerance;
+  q[group_[0]] = beyond;
   ob::ScopedState<> state(joints_->space());
   joints_->from_configuration(q, state.get());
   Eigen::VectorXd back(q.size());
   joints_->to_configuration(state.get(), back);
-  EXPECT_EQ(back[group_[0]], 3.2);
+  EXPECT_EQ(back[group_[0]], beyond);
   EXPECT_FALSE(joints_->space()->satisfiesBounds(state.get()));
+  q[group_[0]] = 3.2;
+  EXPECT_THROW(joints_->from_configuration(q, state.get()), InputError);
 }
 
 TEST_F(OwnArmSpace, InputErrors) { check_input_errors(*joints_); }

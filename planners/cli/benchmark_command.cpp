@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "number_options.hpp"
 #include "planner_factory.hpp"
 #include "problem.hpp"
 #include "problem_list.hpp"
@@ -244,11 +245,16 @@ void add_benchmark_command(CLI::App& app) {
                    "'SCENE REQUEST' lines")
       ->required();
   command->add_option("--planners", s->planners, "Comma-separated planners (default RRTConnect)");
-  command->add_option("--runs", s->runs, "Runs per planner and problem (default 1)");
-  command->add_option("--time", s->time, "Time limit per run, s (default 10)");
-  command->add_option("--memory", s->memory, "Memory limit per run, MB (default 4096)");
-  command->add_option("--jobs", s->jobs,
-                      "Problems run in parallel threads (timings then share the cores)");
+  command->add_option("--runs", s->runs, "Runs per planner and problem (default 1)")
+      ->check(integer_in(1, 1000000));
+  command->add_option("--time", s->time, "Time limit per run, s (default 10)")
+      ->check(finite_in(0.0, 1e9, true));
+  command->add_option("--memory", s->memory, "Memory limit per run, MB (default 4096)")
+      ->check(finite_in(0.0, 1e12, true));
+  command
+      ->add_option("--jobs", s->jobs,
+                   "Problems run in parallel threads (timings then share the cores)")
+      ->check(integer_in(1, 1024));
   command->add_option("--shard", s->shard,
                       "Run shard i of n (every n-th problem from the i-th), e.g. 0/4");
   command->add_option("--log", s->log, "OMPL benchmark log to write")->required();

@@ -21,7 +21,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // Help and version exit 0; every usage error (unknown option, a value failing its check)
+    // exits kExitError like any other bad input.
+    return app.exit(e) == 0 ? hullcheck::cli::kExitOk : hullcheck::cli::kExitError;
   } catch (const hullcheck::cli::ExitWith& e) {
     return e.code;
   } catch (const std::exception& e) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <hullcheck/errors.hpp>
+#include <set>
 #include <sstream>
 
 namespace hullcheck::cli {
@@ -31,6 +32,21 @@ std::vector<std::string> split(const std::string& line) {
     out.push_back(b == std::string::npos ? "" : item.substr(b, e - b + 1));
   }
   return out;
+}
+
+// Throws when the header names a joint twice (or names an empty one).
+void check_unique_names(const std::string& file, const std::vector<std::string>& names) {
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i].empty()) {
+      throw InputError("path '" + file + "': joint name " + std::to_string(i + 1) +
+                       " of the header is empty");
+    }
+    if (!seen.insert(names[i]).second) {
+      throw InputError("path '" + file + "': joint '" + names[i] +
+                       "' is named twice in the header");
+    }
+  }
 }
 
 }  // namespace
@@ -83,8 +99,14 @@ JointPath read_joint_path(const std::string& file) {
                            std::to_string(path.joint_names.size()));
         }
         Eigen::VectorXd q(static_cast<Eigen::Index>(w.size()));
-        for (std::size_t i = 0; i < w.size(); ++i)
+        for (std::size_t i = 0; i < w.size(); ++i) {
           q[static_cast<Eigen::Index>(i)] = w[i].as<double>();
+          if (!std::isfinite(q[static_cast<Eigen::Index>(i)])) {
+            throw InputError("path '" + file + "': waypoint " + std::to_string(row) + ", joint '" +
+                             path.joint_names[i] + "': '" + w[i].Scalar() +
+                             "' is not a finite number");
+          }
+        }
         path.waypoints.push_back(q);
         ++row;
       }
@@ -116,14 +138,16 @@ JointPath read_joint_path(const std::string& file) {
         char* end = nullptr;
         q[static_cast<Eigen::Index>(i)] = std::strtod(items[i].c_str(), &end);
         if (items[i].empty() || *end != '\0' || !std::isfinite(q[static_cast<Eigen::Index>(i)])) {
-          throw InputError("path '" + file + "': line " + std::to_string(line_number) + ": '" +
-                           items[i] + "' is not a finite number");
+          throw InputError("path '" + file + "': line " + std::to_string(line_number) +
+                           ", joint '" + path.joint_names[i] + "': '" + items[i] +
+                           "' is not a finite number");
         }
       }
       path.waypoints.push_back(q);
     }
   }
   if (path.joint_names.empty()) throw InputError("path '" + file + "': no joint-name header");
+  check_unique_names(file, path.joint_names);
   if (path.waypoints.empty()) throw InputError("path '" + file + "': no waypoints");
   return path;
 }

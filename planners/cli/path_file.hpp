@@ -19,8 +19,8 @@ struct JointPath {
 void write_joint_path(const std::string& file, const JointPath& path);
 
 /// Reads what write_joint_path writes (JSON by extension, else CSV). Throws InputError naming
-/// the file, line and problem: unreadable file, no header, a row of the wrong length, a value
-/// that is not a number, no waypoints.
+/// the file, line or waypoint, joint and problem: unreadable file, no header, a joint named
+/// twice, a row of the wrong length, a value that is not a finite number, no waypoints.
 JointPath read_joint_path(const std::string& file);
 
 }  // namespace hullcheck::cli

@@ -9,6 +9,7 @@
 
 #include "exit_codes.hpp"
 #include "html_viewer.hpp"
+#include "number_options.hpp"
 #include "path_file.hpp"
 #include "planner_factory.hpp"
 #include "problem.hpp"
@@ -131,7 +132,8 @@ void add_plan_command(CLI::App& app) {
   command->add_option("--planner", s->planner, "OMPL geometric planner (default RRTConnect)");
   command->add_option("--objective", s->objective,
                       "length | clearance | clearance-cost | length+clearance (default length)");
-  command->add_option("--time", s->time, "Planning time limit, s (default 10)");
+  command->add_option("--time", s->time, "Planning time limit, s (default 10)")
+      ->check(finite_in(0.0, 1e9, true));
   command->add_flag("--simplify", s->simplify, "Simplify the path with the objective");
   command->add_option("--out", s->out, "Write the path: CSV, or JSON when PATH ends in .json");
   command->add_option("--viewer", s->viewer,

@@ -56,6 +56,11 @@ Eigen::VectorXd configuration(const std::string& text, const LoadedWorld& world,
   }
   for (std::size_t i = 0; i < variables.size(); ++i) q[variables[i]] = values[i];
   world.model->check_configuration(q);
+  try {
+    for (int v : variables) world.model->check_joint_range(v, q[v]);
+  } catch (const InputError& e) {
+    throw InputError(std::string(what) + ": " + e.what());
+  }
   return q;
 }
 

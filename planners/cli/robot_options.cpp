@@ -3,13 +3,16 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "number_options.hpp"
+
 namespace hullcheck::cli {
 
 void RobotOptions::add_to(CLI::App& command, bool with_srdf) {
   command.add_option("--robot", urdf, "URDF file of the robot")->required();
   command.add_option("--package", packages,
                      "Folder of a ROS package for package:// URIs, as NAME=DIR (repeatable)");
-  command.add_option("--padding", padding, "Padding added to every link, m (default 0)");
+  command.add_option("--padding", padding, "Padding added to every link, m (default 0)")
+      ->check(finite_in(0.0, 1e6));
   if (with_srdf) {
     command.add_option("--srdf", srdf, "MoveIt SRDF: collision matrix, groups, named states");
   }

@@ -4,6 +4,7 @@
 #include <memory>
 #include <sstream>
 
+#include "number_options.hpp"
 #include "robot_options.hpp"
 
 namespace hullcheck::cli {
@@ -19,11 +20,16 @@ void add_srdf_command(CLI::App& app) {
       "Generate the allowed-collision matrix (Adjacent, Default, Always, Never) by sampling, "
       "as MoveIt's setup assistant does, and write an SRDF to stdout");
   settings->robot.add_to(*command, true);
-  command->add_option("--samples", settings->matrix.samples,
-                      "Random configurations to sample (default 10000)");
-  command->add_option("--seed", settings->matrix.seed, "Sampler seed (default 1)");
-  command->add_option("--always-fraction", settings->matrix.always_fraction,
-                      "Fraction of samples in collision that makes a pair 'Always' (0.95)");
+  command
+      ->add_option("--samples", settings->matrix.samples,
+                   "Random configurations to sample (default 10000)")
+      ->check(integer_in(1, 1000000000));
+  command->add_option("--seed", settings->matrix.seed, "Sampler seed (default 1)")
+      ->check(unsigned_64());
+  command
+      ->add_option("--always-fraction", settings->matrix.always_fraction,
+                   "Fraction of samples in collision that makes a pair 'Always' (0.95)")
+      ->check(finite_in(0.0, 1.0, true));
   command->footer(
       "With --srdf, that file's virtual joints, groups, group states and end effectors are kept in "
       "the output "

@@ -48,6 +48,17 @@ void run(const ValidateSettings& s) {
       q[variables[k]] = row[static_cast<Eigen::Index>(k)];
     return q;
   };
+  // Every waypoint within its joints' ranges before any motion is checked: a value far
+  // outside would make the motion checks crawl.
+  for (std::size_t i = 0; i < path.waypoints.size(); ++i) {
+    try {
+      for (std::size_t k = 0; k < variables.size(); ++k) {
+        model.check_joint_range(variables[k], path.waypoints[i][static_cast<Eigen::Index>(k)]);
+      }
+    } catch (const InputError& e) {
+      throw InputError("path '" + s.path + "': waypoint " + std::to_string(i) + ": " + e.what());
+    }
+  }
   PlanningSetup planning = make_planning_setup(world.checker, variables, base);
   const auto si = planning.setup->getSpaceInformation();
   si->setup();

@@ -162,6 +162,9 @@ void JointStateSpace::to_configuration(const ob::State* state,
 void JointStateSpace::from_configuration(const Eigen::Ref<const Eigen::VectorXd>& q,
                                          ob::State* state) const {
   model_->check_configuration(q);
+  // The group's values get motion-checked: each within its joint's range. Held values stay as
+  // given (data sets hold fingers beyond their limits).
+  for (int v : variables_) model_->check_joint_range(v, q[v]);
   const auto wrap = [](double a) {
     const double w = std::remainder(a, 2.0 * M_PI);  // [-pi, pi]
     return w >= M_PI ? w - 2.0 * M_PI : w;

@@ -5,8 +5,22 @@
 #include <hullcheck/robot/self_collision.hpp>
 #include <memory>
 #include <random>
+#include <unordered_map>
+#include <vector>
 
 namespace hullcheck {
+namespace {
+
+// Indices of the links with collision geometry, ascending.
+std::vector<int> links_with_geometry(const RobotModel& model) {
+  std::vector<int> out;
+  for (int l = 0; l < static_cast<int>(model.links().size()); ++l) {
+    if (!model.link(l).shapes.empty()) out.push_back(l);
+  }
+  return out;
+}
+
+}  // namespace
 
 GeneratedCollisionMatrix generate_collision_matrix(const RobotModel& model,
                                                    const CollisionMatrixOptions& options) {
@@ -14,13 +28,14 @@ GeneratedCollisionMatrix generate_collision_matrix(const RobotModel& model,
   if (!(options.always_fraction > 0.0 && options.always_fraction <= 1.0)) {
     throw InputError("generate_collision_matrix: always_fraction must be in (0, 1]");
   }
-  const int n = static_cast<int>(model.links().size());
   GeneratedCollisionMatrix out{AllowedCollisionMatrix::from_adjacency(model)};
   out.samples = options.samples;
-  const auto has_geometry = [&](int l) { return !model.link(l).shapes.empty(); };
-  for (int a = 0; a < n; ++a) {
-    for (int b = a + 1; b < n; ++b) {
-      if (out.matrix.allowed(a, b) && has_geometry(a) && has_geometry(b)) ++out.adjacent;
+  // Only pairs of links with geometry are reported (and checked): quadratic in those links,
+  // not in all links.
+  const std::vector<int> solid = links_with_geometry(model);
+  for (std::size_t i = 0; i < solid.size(); ++i) {
+    for (std::size_t k = i + 1; k < solid.size(); ++k) {
+      if (out.matrix.allowed(solid[i], solid[k])) ++out.adjacent;
     }
   }
   // The checker copies nothing but shares the model; give it a non-owning pointer.
@@ -37,7 +52,13 @@ GeneratedCollisionMatrix generate_collision_matrix(const RobotModel& model,
   }
 
   SelfCollisionChecker checker(shared, out.matrix);
-  std::vector<int> counts(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0);
+  // Collision counts per checked pair, found by the pair's key (a < b).
+  const auto key = [](int a, int b) {
+    return static_cast<std::uint64_t>(a) << 32 | static_cast<std::uint64_t>(b);
+  };
+  std::unordered_map<std::uint64_t, int> counts;
+  counts.reserve(checker.checked_link_pairs().size());
+  for (const auto& [a, b] : checker.checked_link_pairs()) counts.emplace(key(a, b), 0);
   std::mt19937_64 rng(options.seed);
   const Eigen::VectorXd lower = model.lower_limits();
   const Eigen::VectorXd upper = model.upper_limits();
@@ -52,10 +73,10 @@ GeneratedCollisionMatrix generate_collision_matrix(const RobotModel& model,
     model.compute_link_poses(q, poses);
     colliding.clear();
     checker.colliding_link_pairs_at(poses, colliding);
-    for (const auto& [a, b] : colliding) ++counts[static_cast<std::size_t>(a * n + b)];
+    for (const auto& [a, b] : colliding) ++counts[key(a, b)];
   }
   for (const auto& [a, b] : checker.checked_link_pairs()) {
-    const int c = counts[static_cast<std::size_t>(a * n + b)];
+    const int c = counts[key(a, b)];
     if (c == 0) {
       out.matrix.allow(a, b, CollisionAllowance::kNever);
       ++out.never;
@@ -76,12 +97,15 @@ Srdf collision_matrix_to_srdf(const RobotModel& model, const AllowedCollisionMat
   }
   Srdf srdf;
   srdf.robot_name = model.name();
-  for (int a = 0; a < matrix.link_count(); ++a) {
-    for (int b = a + 1; b < matrix.link_count(); ++b) {
-      if (model.link(a).shapes.empty() || model.link(b).shapes.empty()) continue;
-      if (!matrix.allowed(a, b)) continue;
+  const std::vector<int> solid = links_with_geometry(model);
+  for (std::size_t i = 0; i < solid.size(); ++i) {
+    for (std::size_t k = i + 1; k < solid.size(); ++k) {
+      const int a = solid[i];
+      const int b = solid[k];
+      const CollisionAllowance reason = matrix.allowance(a, b);
+      if (reason == CollisionAllowance::kChecked) continue;
       srdf.disabled_collisions.push_back(
-          {model.link(a).name, model.link(b).name, to_string(matrix.allowance(a, b))});
+          {model.link(a).name, model.link(b).name, to_string(reason)});
     }
   }
   return srdf;

@@ -73,6 +73,29 @@ void RobotModel::check_configuration(const Eigen::Ref<const Eigen::VectorXd>& q)
   }
 }
 
+void RobotModel::check_joint_range(int variable, double value, double tolerance) const {
+  const Joint& j = joint(variable_joint(variable));
+  const bool continuous = j.type == JointType::kContinuous;
+  const bool inside = continuous ? std::abs(value) <= kMaxContinuousValue
+                                 : value >= j.lower - tolerance && value <= j.upper + tolerance;
+  if (inside) return;
+  std::ostringstream msg;
+  msg << "robot '" << name_ << "': joint '" << j.name << "' (configuration value " << variable
+      << ") is " << value;
+  if (continuous) {
+    msg << ", beyond the +-" << kMaxContinuousValue << " rad accepted for a continuous joint";
+  } else {
+    msg << ", outside its limits [" << j.lower << ", " << j.upper << "] by more than " << tolerance;
+  }
+  throw InputError(msg.str());
+}
+
+void RobotModel::check_joint_ranges(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                    double tolerance) const {
+  check_configuration(q);
+  for (int i = 0; i < variable_count(); ++i) check_joint_range(i, q[i], tolerance);
+}
+
 void RobotModel::compute_link_poses(const Eigen::Ref<const Eigen::VectorXd>& q,
                                     std::vector<Eigen::Isometry3d>& link_poses) const {
   check_configuration(q);

@@ -11,7 +11,9 @@
 #include <sstream>
 #include <tuple>
 
+#include "length_checks.hpp"
 #include "urdf_messages.hpp"
+#include "urdf_tree.hpp"
 
 namespace hullcheck {
 namespace {
@@ -26,8 +28,20 @@ Eigen::Isometry3d to_isometry(const urdf::Pose& pose) {
   return out;
 }
 
-// Names of the <joint> elements of <robot>, in file order; throws on malformed XML.
-std::vector<std::string> joint_order_in_file(const std::string& xml, const std::string& source) {
+// The <link> names and <joint> edges of <robot>, in file order; throws on malformed XML.
+struct UrdfGraph {
+  std::vector<std::string> links;
+  std::vector<detail::UrdfJointEdge> joints;
+};
+
+// The `name` attribute of the first <tag> child of `e` (for <parent>/<child>: `link`).
+std::string child_attribute(const tinyxml2::XMLElement& e, const char* tag, const char* attr) {
+  const tinyxml2::XMLElement* c = e.FirstChildElement(tag);
+  const char* value = c == nullptr ? nullptr : c->Attribute(attr);
+  return value == nullptr ? "" : value;
+}
+
+UrdfGraph graph_in_file(const std::string& xml, const std::string& source) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
     throw InputError("URDF '" + source + "': malformed XML: " + doc.ErrorStr());
@@ -36,13 +50,19 @@ std::vector<std::string> joint_order_in_file(const std::string& xml, const std::
   if (robot == nullptr) {
     throw InputError("URDF '" + source + "': no <robot> root element");
   }
-  std::vector<std::string> names;
+  UrdfGraph graph;
+  for (const tinyxml2::XMLElement* l = robot->FirstChildElement("link"); l != nullptr;
+       l = l->NextSiblingElement("link")) {
+    const char* name = l->Attribute("name");
+    graph.links.emplace_back(name == nullptr ? "" : name);
+  }
   for (const tinyxml2::XMLElement* j = robot->FirstChildElement("joint"); j != nullptr;
        j = j->NextSiblingElement("joint")) {
     const char* name = j->Attribute("name");
-    names.emplace_back(name == nullptr ? "" : name);
+    graph.joints.push_back({name == nullptr ? "" : name, child_attribute(*j, "parent", "link"),
+                            child_attribute(*j, "child", "link")});
   }
-  return names;
+  return graph;
 }
 
 void check_padding(const std::string& what, double padding) {
@@ -76,6 +96,31 @@ std::vector<Eigen::Vector3d> distinct_points(const std::vector<Eigen::Vector3d>&
   return out;
 }
 
+// The URDF element name of a geometry type.
+const char* geometry_tag(int type) {
+  switch (type) {
+    case urdf::Geometry::SPHERE:
+      return "sphere";
+    case urdf::Geometry::BOX:
+      return "box";
+    case urdf::Geometry::CYLINDER:
+      return "cylinder";
+    case urdf::Geometry::MESH:
+      return "mesh";
+    default:
+      return "geometry";
+  }
+}
+
+// Throws unless every vertex coordinate is within the loaders' length range (m).
+void check_mesh_extent(const std::vector<Eigen::Vector3d>& vertices, const std::string& what) {
+  for (const Eigen::Vector3d& v : vertices) {
+    if (v.array().abs().maxCoeff() > detail::kMaxLoadedLength) {
+      detail::check_lengths(v, what + ": vertex");
+    }
+  }
+}
+
 struct MeshKey {
   std::string path;
   double sx, sy, sz;
@@ -105,23 +150,28 @@ class Loader {
                        std::string(),
                        0};
     out.origin = to_isometry(collision.origin);
+    detail::check_lengths(out.origin.translation(), where + ": <collision><origin xyz>");
     const urdf::Geometry& g = *collision.geometry;
     try {
       switch (g.type) {
         case urdf::Geometry::SPHERE: {
           const auto& s = static_cast<const urdf::Sphere&>(g);
+          detail::check_length(s.radius, where + ": <sphere radius>");
           out.unpadded = Sphere(s.radius);
           out.source = "sphere";
           break;
         }
         case urdf::Geometry::BOX: {
           const auto& b = static_cast<const urdf::Box&>(g);
+          detail::check_lengths(Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z), where + ": <box size>");
           out.unpadded = Box(b.dim.x, b.dim.y, b.dim.z);
           out.source = "box";
           break;
         }
         case urdf::Geometry::CYLINDER: {
           const auto& c = static_cast<const urdf::Cylinder&>(g);
+          detail::check_length(c.radius, where + ": <cylinder radius>");
+          detail::check_length(c.length, where + ": <cylinder length>");
           out.unpadded = Cylinder(c.radius, c.length);
           out.source = "cylinder";
           break;
@@ -133,8 +183,9 @@ class Loader {
           const MeshKey key{path, m.scale.x, m.scale.y, m.scale.z};
           auto it = meshes_.find(key);
           if (it == meshes_.end()) {
-            const std::vector<Eigen::Vector3d> vertices =
-                read_mesh_vertices(path, Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z));
+            const std::vector<Eigen::Vector3d> vertices = read_mesh_vertices(
+                path, Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z), options_.mesh_limits);
+            check_mesh_extent(vertices, where + ": mesh '" + path + "' (after <mesh scale>)");
             it = meshes_
                      .emplace(key, MeshHull{ConvexHull(distinct_points(vertices)), vertices.size()})
                      .first;
@@ -148,9 +199,11 @@ class Loader {
           throw InputError("unknown geometry type");
       }
     } catch (const InputError& e) {
+      // The loader's own errors carry the prefix already; the Shape constructors' get it once,
+      // with the element.
       const std::string what = e.what();
       if (what.rfind("URDF '", 0) == 0) throw;
-      throw InputError(where + ": " + what);
+      throw InputError(where + ": <" + geometry_tag(g.type) + ">: " + what);
     }
     return out;
   }
@@ -177,7 +230,10 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const std::strin
                                         const RobotLoadOptions& options,
                                         const std::string& source_name) {
   const std::string where = "URDF '" + source_name + "'";
-  const std::vector<std::string> file_order = joint_order_in_file(xml, source_name);
+  const UrdfGraph graph = graph_in_file(xml, source_name);
+  // Before urdfdom builds its link pointers: the walk below needs a tree (a cycle would make
+  // it endless, a detached one would drop links silently).
+  detail::check_joint_tree(graph.links, graph.joints, where);
   check_padding(where + ": default", options.default_padding);
 
   urdf::ModelInterfaceSharedPtr urdf;
@@ -200,7 +256,7 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const std::strin
   model.default_padding_ = options.default_padding;
 
   std::map<std::string, std::size_t> file_rank;
-  for (std::size_t i = 0; i < file_order.size(); ++i) file_rank.emplace(file_order[i], i);
+  for (std::size_t i = 0; i < graph.joints.size(); ++i) file_rank.emplace(graph.joints[i].name, i);
 
   // Depth-first traversal from the root; children in file order.
   Loader loader(source_name, base_dir, options);
@@ -234,6 +290,7 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const std::strin
       joint.name = uj.name;
       joint.parent_link = link_id;
       joint.origin = to_isometry(uj.parent_to_joint_origin_transform);
+      detail::check_lengths(joint.origin.translation(), jwhere + ": <origin xyz>");
       switch (uj.type) {
         case urdf::Joint::REVOLUTE:
           joint.type = JointType::kRevolute;
@@ -272,9 +329,15 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const std::strin
             joint.lower > joint.upper) {
           throw InputError(jwhere + ": <limit> lower must be <= upper, both finite");
         }
+        const char* unit = joint.type == JointType::kRevolute ? "rad" : "m";
+        detail::check_joint_value(joint.lower, jwhere + ": <limit lower>", unit);
+        detail::check_joint_value(joint.upper, jwhere + ": <limit upper>", unit);
       }
       if (uj.limits && uj.limits->velocity > 0.0) joint.max_velocity = uj.limits->velocity;
       if (uj.mimic && joint.type != JointType::kFixed) {
+        detail::check_joint_value(uj.mimic->multiplier, jwhere + ": <mimic multiplier>", "");
+        detail::check_joint_value(uj.mimic->offset, jwhere + ": <mimic offset>",
+                                  joint.type == JointType::kPrismatic ? "m" : "rad");
         mimics[joint.name] = {uj.mimic->joint_name, uj.mimic};
       }
       const int joint_id = static_cast<int>(model.joints_.size());

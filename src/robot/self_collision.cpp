@@ -23,11 +23,16 @@ SelfCollisionChecker::SelfCollisionChecker(std::shared_ptr<const RobotModel> mod
     }
   }
   first_shape[static_cast<std::size_t>(n)] = static_cast<int>(shapes_.size());
-  for (int a = 0; a < n; ++a) {
-    for (int b = a + 1; b < n; ++b) {
-      if (acm.allowed(a, b) || model_->link(a).shapes.empty() || model_->link(b).shapes.empty()) {
-        continue;
-      }
+  // Pairs of links with geometry only: quadratic in those, not in all links.
+  std::vector<int> solid;
+  for (int l = 0; l < n; ++l) {
+    if (!model_->link(l).shapes.empty()) solid.push_back(l);
+  }
+  for (std::size_t i = 0; i < solid.size(); ++i) {
+    for (std::size_t k = i + 1; k < solid.size(); ++k) {
+      const int a = solid[i];
+      const int b = solid[k];
+      if (acm.allowed(a, b)) continue;
       const int pair = static_cast<int>(link_pairs_.size());
       link_pairs_.emplace_back(a, b);
       for (int sa = first_shape[a]; sa < first_shape[a + 1]; ++sa) {
@@ -151,6 +156,11 @@ LinkPairProximity SelfCollisionChecker::min_distance_at(
   evaluate(first);
   for (std::size_t i = 0; i < shape_pairs_.size(); ++i) {
     if (i != first && lower_bounds_[i] < best.distance) evaluate(i);
+  }
+  if (best.link_a < 0) {
+    // Only reachable with NaN distances, which the loaders' and shapes' range checks exclude.
+    throw InputError("SelfCollisionChecker: robot '" + model_->name() +
+                     "': no link pair has a defined distance (shapes or poses out of range)");
   }
   best.link_a_name = model_->link(best.link_a).name;
   best.link_b_name = model_->link(best.link_b).name;

@@ -151,8 +151,15 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
     }
   }
   first_shape[static_cast<std::size_t>(n)] = static_cast<int>(shapes_.size());
-  for (int a = 0; a < n; ++a) {
-    for (int b = a + 1; b < n; ++b) {
+  // Pairs of links with geometry only: quadratic in those, not in all links.
+  std::vector<int> solid;
+  for (int l = 0; l < n; ++l) {
+    if (!model_->link(l).shapes.empty()) solid.push_back(l);
+  }
+  for (std::size_t i = 0; i < solid.size(); ++i) {
+    for (std::size_t k = i + 1; k < solid.size(); ++k) {
+      const int a = solid[i];
+      const int b = solid[k];
       if (matrix_.allowed(a, b)) continue;
       for (int sa = first_shape[static_cast<std::size_t>(a)];
            sa < first_shape[static_cast<std::size_t>(a) + 1]; ++sa) {

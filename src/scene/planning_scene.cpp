@@ -6,6 +6,8 @@
 #include <map>
 #include <sstream>
 
+#include "../robot/length_checks.hpp"
+
 namespace hullcheck {
 namespace {
 
@@ -46,18 +48,41 @@ class SceneReader {
     }
   }
 
-  // [x, y, z] or {x:, y:, z:} (missing map keys read as 0, as ROS messages default them).
+  // A length, m: finite and at most detail::kMaxLoadedLength in magnitude.
+  double length(const YAML::Node& n, const std::string& object, const std::string& what) const {
+    const double v = number(n, object, what);
+    if (std::abs(v) > detail::kMaxLoadedLength) {
+      std::ostringstream msg;
+      msg << what << " is " << v << ", above the " << detail::kMaxLoadedLength
+          << " m accepted for a length";
+      fail(object, msg.str());
+    }
+    return v;
+  }
+
+  // Runs a Shape constructor; its InputError gets this scene's prefix once (the scene's own
+  // errors, from fail(), already carry it and are not caught here).
+  template <typename Make>
+  Shape construct(const std::string& object, const std::string& what, Make make) const {
+    try {
+      return make();
+    } catch (const InputError& e) {
+      fail(object, what + ": " + e.what());
+    }
+  }
+
+  // [x, y, z] or {x:, y:, z:} (missing map keys read as 0, as ROS messages default them), m.
   Eigen::Vector3d vector3(const YAML::Node& n, const std::string& object,
                           const std::string& what) const {
     Eigen::Vector3d v = Eigen::Vector3d::Zero();
     if (!n) return v;
     if (n.IsSequence()) {
       if (n.size() != 3) fail(object, what + " needs 3 values, has " + std::to_string(n.size()));
-      for (int i = 0; i < 3; ++i) v[i] = number(n[static_cast<std::size_t>(i)], object, what);
+      for (int i = 0; i < 3; ++i) v[i] = length(n[static_cast<std::size_t>(i)], object, what);
     } else if (n.IsMap()) {
       const char* keys[] = {"x", "y", "z"};
       for (int i = 0; i < 3; ++i) {
-        if (n[keys[i]]) v[i] = number(n[keys[i]], object, what + "." + keys[i]);
+        if (n[keys[i]]) v[i] = length(n[keys[i]], object, what + "." + keys[i]);
       }
     } else {
       fail(object, what + " is neither a list nor a map");
@@ -158,7 +183,7 @@ class SceneReader {
     if (!dims || !dims.IsSequence()) fail(object, type + " without a dimensions list");
     std::vector<double> d;
     for (std::size_t i = 0; i < dims.size(); ++i) {
-      d.push_back(number(dims[i], object, type + " dimension"));
+      d.push_back(length(dims[i], object, type + " dimension " + std::to_string(i)));
       if (d.back() < 0.0) fail(object, type + " has a negative dimension");
     }
     const auto need = [&](std::size_t n, const char* layout) {
@@ -167,25 +192,21 @@ class SceneReader {
                          std::to_string(d.size()));
       }
     };
-    try {
-      if (type == "box") {
-        need(3, "[x, y, z]");
-        return Box(d[0], d[1], d[2]);
-      }
-      if (type == "sphere") {
-        need(1, "[radius]");
-        return Sphere(d[0]);
-      }
-      if (type == "cylinder") {
-        need(2, "[height, radius]");
-        return Cylinder(d[1], d[0]);
-      }
-      if (type == "cone") {
-        need(2, "[height, radius]");
-        return cone(d[0], d[1]);
-      }
-    } catch (const InputError& e) {
-      fail(object, e.what());
+    if (type == "box") {
+      need(3, "[x, y, z]");
+      return construct(object, type, [&] { return Shape(Box(d[0], d[1], d[2])); });
+    }
+    if (type == "sphere") {
+      need(1, "[radius]");
+      return construct(object, type, [&] { return Shape(Sphere(d[0])); });
+    }
+    if (type == "cylinder") {
+      need(2, "[height, radius]");
+      return construct(object, type, [&] { return Shape(Cylinder(d[1], d[0])); });
+    }
+    if (type == "cone") {
+      need(2, "[height, radius]");
+      return construct(object, type, [&] { return cone(d[0], d[1]); });
     }
     fail(object, "unknown primitive type '" + raw + "' (box, sphere, cylinder, cone)");
   }
@@ -209,9 +230,9 @@ class SceneReader {
     }
     std::vector<Eigen::Vector3d> points;
     for (std::size_t i = 0; i < vertices.size(); ++i) {
-      points.push_back(vector3(vertices[i], object, "mesh vertex"));
+      points.push_back(vector3(vertices[i], object, "mesh vertex " + std::to_string(i)));
     }
-    return ConvexHull(points);
+    return construct(object, "mesh", [&] { return Shape(ConvexHull(points)); });
   }
 
   void read_object(const YAML::Node& o, std::size_t index, PlanningScene* scene) {

@@ -11,16 +11,14 @@ tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 failures=0
 
-# expect NAME EXPECTED_EXIT PATTERN_STDOUT PATTERN_STDERR -- COMMAND...
+# expect NAME EXPECTED_EXIT PATTERN_STDOUT PATTERN_STDERR -- COMMAND...   (exact exit status)
 expect() {
   local name="$1" want_exit="$2" out_pattern="$3" err_pattern="$4"
   shift 5
   "$@" >"$tmp/out" 2>"$tmp/err"
   local got=$?
   local ok=1
-  if { [ "$want_exit" = 0 ] && [ "$got" != 0 ]; } || { [ "$want_exit" != 0 ] && [ "$got" = 0 ]; }; then
-    ok=0
-  fi
+  [ "$got" != "$want_exit" ] && ok=0
   [ -n "$out_pattern" ] && ! grep -Eq -- "$out_pattern" "$tmp/out" && ok=0
   [ -n "$err_pattern" ] && ! grep -Eq -- "$err_pattern" "$tmp/err" && ok=0
   if [ "$ok" = 1 ]; then
@@ -77,7 +75,7 @@ expect "srdf writes a collision matrix" 0 'disable_collisions link1="base_link" 
 expect "srdf finds Never pairs" 0 'reason="Never"' "" -- "$bin" srdf --robot "$urdf" --samples 300
 expect "srdf keeps groups of --srdf" 0 '<group_state name="ready" group="arm">' "" -- \
   "$bin" srdf --robot "$urdf" --srdf "$srdf" --samples 300
-expect "srdf rejects zero samples" 1 "" "samples must be >= 1" -- \
+expect "srdf rejects zero samples" 1 "" "--samples: must be an integer in \\[1, " -- \
   "$bin" srdf --robot "$urdf" --samples 0
 
 scene="$arm/scenes/table_wall.yaml"
@@ -118,8 +116,94 @@ printf 'joint1,nosuch\n0,0\n' >"$tmp/bad_path.csv"
 expect "validate: unknown joint in path" 1 "" "'nosuch' is not an active joint" -- \
   "$bin" validate "${world[@]}" --path "$tmp/bad_path.csv"
 printf 'joint1,joint2\n0,abc\n' >"$tmp/bad_value.csv"
-expect "validate: bad number in path" 1 "" "line 2: 'abc' is not a finite number" -- \
+expect "validate: bad number in path" 1 "" "line 2, joint 'joint2': 'abc' is not a finite number" -- \
   "$bin" validate "${world[@]}" --path "$tmp/bad_value.csv"
+
+# ---- Adversarial input ("Truthful under attack"): exit 1 fast with one clear message ----
+# once NAME PATTERN: the last command's stderr holds PATTERN exactly once.
+once() {
+  local n
+  n=$(grep -oE -- "$2" "$tmp/err" | wc -l)
+  if [ "$n" = 1 ]; then
+    echo "ok   $1"
+  else
+    echo "FAIL $1 ('$2' found $n times)"
+    cut -c1-300 "$tmp/err" | sed 's/^/  stderr: /' | head -5
+    failures=$((failures + 1))
+  fi
+}
+for bad in nan -1 0 inf abc; do
+  expect "plan --time $bad is a usage error" 1 "" "--time: must be a finite number in \\(0, " -- \
+    "$bin" plan "${world[@]}" --group arm --start left --goal right --time "$bad"
+done
+expect "benchmark --runs 0 is a usage error" 1 "" "--runs: must be an integer" -- \
+  "$bin" benchmark --robot "$urdf" --problems "$arm/problems" --log "$tmp/x.log" --runs 0
+expect "benchmark --time nan is a usage error" 1 "" "--time: must be a finite number" -- \
+  "$bin" benchmark --robot "$urdf" --problems "$arm/problems" --log "$tmp/x.log" --time nan
+expect "benchmark --jobs -2 is a usage error" 1 "" "--jobs: must be an integer" -- \
+  "$bin" benchmark --robot "$urdf" --problems "$arm/problems" --log "$tmp/x.log" --jobs -2
+expect "benchmark --memory -5 is a usage error" 1 "" "--memory: must be a finite number" -- \
+  "$bin" benchmark --robot "$urdf" --problems "$arm/problems" --log "$tmp/x.log" --memory -5
+expect "srdf --always-fraction nan is a usage error" 1 "" "--always-fraction: must be a finite" -- \
+  "$bin" srdf --robot "$urdf" --always-fraction nan
+expect "srdf --seed -1 is a usage error" 1 "" "--seed: must be an integer in \\[0, " -- \
+  "$bin" srdf --robot "$urdf" --seed -1 --samples 1
+expect "--padding nan is a usage error" 1 "" "--padding: must be a finite number" -- \
+  "$bin" inspect --robot "$urdf" --padding nan
+printf 'joint1,joint2,joint3,joint4,joint5,joint6,joint7\n0,0,0,-1.3,0,1,0\n1e308,0,0,-1.3,0,1,0\n' \
+  >"$tmp/huge.csv"
+start_s=$(date +%s)
+expect "validate: a joint value of 1e308 is rejected before motion checks" 1 "" \
+  "path '.*huge.csv': waypoint 1: robot '[a-z_]+': joint 'joint1' .*is 1e\\+308, outside its limits" -- \
+  "$bin" validate "${world[@]}" --path "$tmp/huge.csv"
+elapsed=$(($(date +%s) - start_s))
+if [ "$elapsed" -le 5 ]; then echo "ok   ... and fast (${elapsed} s)"; else
+  echo "FAIL validate 1e308 took ${elapsed} s"; failures=$((failures + 1)); fi
+printf '{"joint_names": ["joint1", "joint2"], "waypoints": [[0, 0], [0, .nan]]}\n' >"$tmp/nan.json"
+expect "validate: NaN in a JSON path names waypoint and joint" 1 "" \
+  "path '.*nan.json': waypoint 1, joint 'joint2': '.nan' is not a finite number" -- \
+  "$bin" validate "${world[@]}" --path "$tmp/nan.json"
+printf '{"joint_names": ["joint1", "joint2"], "waypoints": [[0, 0], [0, NaN]]}\n' >"$tmp/nan2.json"
+expect "validate: bare NaN in a JSON path is rejected" 1 "" "path '.*nan2.json'" -- \
+  "$bin" validate "${world[@]}" --path "$tmp/nan2.json"
+printf 'joint1,joint2,joint1\n0,0,0\n' >"$tmp/dup.csv"
+expect "validate: a duplicated joint column names the file and the joint" 1 "" \
+  "path '.*dup.csv': joint 'joint1' is named twice in the header" -- \
+  "$bin" validate "${world[@]}" --path "$tmp/dup.csv"
+once "... once" "named twice"
+printf '<robot name="huge"><link name="base"><collision><geometry><box size="1e300 1 1"/></geometry></collision></link><link name="arm"><collision><geometry><sphere radius="0.1"/></geometry></collision></link><joint name="j" type="continuous"><parent link="base"/><child link="arm"/></joint></robot>\n' \
+  >"$tmp/huge_box.urdf"
+expect "inspect: a 1e300 m box names the URDF, link and element" 1 "" \
+  "URDF '.*huge_box.urdf': link 'base': <box size> x: must be finite and at most 1e\\+06 m" -- \
+  "$bin" inspect --robot "$tmp/huge_box.urdf" --state 0
+once "... once, and no range_check" "URDF '"
+printf '<robot name="c"><link name="root"/><link name="a"/><link name="b"/><link name="c"/>\n<joint name="ra" type="fixed"><parent link="root"/><child link="a"/></joint>\n<joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>\n<joint name="bc" type="fixed"><parent link="b"/><child link="c"/></joint>\n<joint name="ca" type="fixed"><parent link="c"/><child link="a"/></joint></robot>\n' \
+  >"$tmp/cycle.urdf"
+expect "inspect: a joint cycle is an error, not an endless load" 1 "" \
+  "link 'a' is the child of two joints, 'ra' and 'ca'" -- timeout 20 "$bin" inspect --robot "$tmp/cycle.urdf"
+printf 'name: s\nworld:\n  collision_objects:\n    - id: o\n      primitives:\n        - {type: box, dimensions: [1, 1]}\n      primitive_poses:\n        - {position: [0, 0, 0]}\n' \
+  >"$tmp/short_box.yaml"
+expect "scene errors carry their prefix once" 1 "" \
+  "scene '.*short_box.yaml': object 'o': box needs 3 dimensions" -- \
+  "$bin" plan --robot "$urdf" --srdf "$srdf" --scene "$tmp/short_box.yaml" --group arm --start left --goal right
+once "... once" "scene '"
+# srdf on 20000 links (every 100th with geometry): near-linear, seconds not hours.
+awk 'BEGIN {
+  n = 20000; print "<robot name=\"chain\">";
+  for (i = 0; i < n; ++i) {
+    if (i % 100 == 0) printf "<link name=\"l%d\"><collision><geometry><sphere radius=\"0.1\"/></geometry></collision></link>\n", i;
+    else printf "<link name=\"l%d\"/>\n", i;
+  }
+  for (i = 1; i < n; ++i)
+    printf "<joint name=\"j%d\" type=\"revolute\"><parent link=\"l%d\"/><child link=\"l%d\"/><origin xyz=\"0 0 1\"/><axis xyz=\"1 0 0\"/><limit lower=\"-0.01\" upper=\"0.01\" effort=\"1\" velocity=\"1\"/></joint>\n", i, i - 1, i;
+  print "</robot>";
+}' >"$tmp/chain.urdf"
+start_s=$(date +%s)
+expect "srdf on a 20000-link chain" 0 'disable_collisions link1="l0" link2="l100" reason="Adjacent"' "" -- \
+  timeout 60 "$bin" srdf --robot "$tmp/chain.urdf" --samples 100
+elapsed=$(($(date +%s) - start_s))
+if [ "$elapsed" -le 30 ]; then echo "ok   ... in ${elapsed} s"; else
+  echo "FAIL srdf on 20000 links took ${elapsed} s"; failures=$((failures + 1)); fi
 
 problems="$arm/problems"
 expect "benchmark writes an OMPL log" 0 "benchmark: 8 runs, 8 solved" "\\[2/2 problems\\]" -- \

@@ -45,7 +45,9 @@ class JointStateSpace {
   /// in. `q` must have model().variable_count() entries.
   void to_configuration(const ::ompl::base::State* state, Eigen::Ref<Eigen::VectorXd> q) const;
   /// Writes the group's values of the full configuration `q` into `state` (continuous joints
-  /// wrapped into [-pi, pi)). Throws InputError when q has the wrong size or a NaN.
+  /// wrapped into [-pi, pi)). Throws InputError when q has the wrong size or a NaN, or when a
+  /// group value is outside its joint's range (RobotModel::check_joint_range, default
+  /// tolerance).
   void from_configuration(const Eigen::Ref<const Eigen::VectorXd>& q,
                           ::ompl::base::State* state) const;
   /// The group's values of `state` in dimension order.

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace hullcheck {
@@ -44,24 +45,38 @@ class AllowedCollisionMatrix {
                                           std::vector<std::string>* warnings = nullptr);
 
   int link_count() const { return n_; }
-  bool allowed(int a, int b) const { return a == b || at(a, b) != CollisionAllowance::kChecked; }
-  CollisionAllowance allowance(int a, int b) const { return at(a, b); }
+  /// Whether the pair is not checked (always true for a == b). Throws InputError on bad
+  /// indices. O(log k) for links in k adjacency groups; not for query hot loops (the checkers
+  /// read it once, when they are built).
+  bool allowed(int a, int b) const {
+    return a == b || allowance(a, b) != CollisionAllowance::kChecked;
+  }
+  /// The pair's reason (kChecked for a == b); throws InputError on bad indices.
+  CollisionAllowance allowance(int a, int b) const;
   /// Allows the pair (a != b) for `reason` (not kChecked); throws InputError on bad indices.
   void allow(int a, int b, CollisionAllowance reason);
   /// Checks the pair again.
   void check(int a, int b);
-  /// Number of allowed pairs a < b.
-  int allowed_pair_count() const;
+  /// Number of allowed pairs a < b (kept up to date: O(1)).
+  std::int64_t allowed_pair_count() const { return allowed_count_; }
 
  private:
-  CollisionAllowance at(int a, int b) const {
-    return cells_[static_cast<std::size_t>(a) * static_cast<std::size_t>(n_) +
-                  static_cast<std::size_t>(b)];
-  }
+  // Storage is linear in the links plus the explicitly set pairs: from_adjacency's pairs are
+  // cliques ("groups": a rigid body, or links joined through links without geometry) stored
+  // as their member lists, not as pairs (a chain of 100000 links without geometry is one clique
+  // of 5e9 pairs); allow() and check() store the pair itself, which takes precedence.
+  static std::uint64_t key(int a, int b);
+  void check_index(int a, int b, const char* what) const;
+  bool in_common_group(int a, int b) const;
   void set(int a, int b, CollisionAllowance value);
+  void set_groups(const std::vector<std::vector<int>>& groups);
 
   int n_ = 0;
-  std::vector<CollisionAllowance> cells_;
+  std::unordered_map<std::uint64_t, CollisionAllowance> pairs_;
+  // Sorted group ids of link l: group_ids_[group_offsets_[l] .. group_offsets_[l + 1]).
+  std::vector<int> group_offsets_;
+  std::vector<int> group_ids_;
+  std::int64_t allowed_count_ = 0;
 };
 
 }  // namespace hullcheck

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <hullcheck/robot/mesh_file.hpp>
 #include <hullcheck/robot/resource_path.hpp>
 #include <hullcheck/shape.hpp>
 #include <limits>
@@ -87,6 +88,8 @@ struct RobotLoadOptions {
   double default_padding = 0.0;
   /// Padding per link name (m, >= 0). Unknown link names are an error.
   std::map<std::string, double> link_padding;
+  /// Size, count and memory limits for each collision mesh file (mesh_file.hpp).
+  MeshLimits mesh_limits;
 };
 
 /// A robot loaded from URDF: links, joints, collision shapes, and forward kinematics.
@@ -100,7 +103,10 @@ struct RobotLoadOptions {
 ///
 /// Visual geometry is ignored (its meshes need not exist). Loading throws InputError naming
 /// the file, element and problem: malformed XML, an unresolvable or unreadable collision
-/// mesh, a revolute/prismatic joint without limits, a floating or planar joint, a mimic of an
+/// mesh or one beyond `RobotLoadOptions::mesh_limits`, joints that do not form one tree
+/// (a cycle, a link with two parent joints, several roots, links unreachable from the root),
+/// a shape dimension, mesh vertex or origin translation that is not finite or exceeds 1e6 m,
+/// a revolute/prismatic joint without limits, a floating or planar joint, a mimic of an
 /// unknown joint, bad padding. Immutable after loading except for padding; const methods are
 /// thread-safe.
 class RobotModel {
@@ -141,6 +147,24 @@ class RobotModel {
   /// Throws InputError unless q has variable_count() finite values (the message names the
   /// robot, the expected count or the joint holding the bad value).
   void check_configuration(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+
+  /// How far (rad or m) a revolute or prismatic joint value may lie outside its limits and still
+  /// pass check_joint_ranges (data sets hold states slightly outside them).
+  static constexpr double kLimitTolerance = 1e-3;
+  /// Largest |value| (rad) check_joint_ranges accepts for a continuous joint.
+  static constexpr double kMaxContinuousValue = 1e6;
+
+  /// Throws InputError naming the robot, the joint, the value and the joint's range unless
+  /// `value` (rad or m) of configuration value `variable` is within the joint's limits widened
+  /// by `tolerance` (rad or m, >= 0) for a revolute/prismatic joint, or at most
+  /// kMaxContinuousValue in magnitude for a continuous one. The check of values entering
+  /// planning and motion validation (JointStateSpace::from_configuration for the group's
+  /// values, the program's paths and start/goal states): a value far outside the range would
+  /// make motion checks crawl. Does not allocate unless it throws.
+  void check_joint_range(int variable, double value, double tolerance = kLimitTolerance) const;
+  /// check_configuration, then check_joint_range for every value of q.
+  void check_joint_ranges(const Eigen::Ref<const Eigen::VectorXd>& q,
+                          double tolerance = kLimitTolerance) const;
 
   /// Forward kinematics: writes every link's pose (model frame <- link frame) into
   /// `link_poses`, indexed like links(). Checks q (check_configuration). Does not allocate
