@@ -2,15 +2,16 @@
 # Fuzzes hullcheck's readers with libFuzzer (clang, ASan + UBSan):
 #   scripts/fuzz.sh [--seconds N] [--rss-mb M] [--keep-going] [target...]
 # Targets: urdf srdf scene request path mesh (default: all; "fuzz_urdf" works too). Builds
-# build/fuzz with clang, replays tests/fuzz/regressions/<target>/, then fuzzes each target for N
-# seconds (default 600) with -rss_limit_mb=M (default 2048) and -timeout=10. Seeds: the
+# build/fuzz with clang, replays tests/fuzz/regressions/<target>/ (see KNOWN there), then
+# fuzzes each target for N seconds (default 600) with -rss_limit_mb=M (default 2048) and
+# -timeout=10. Seeds: the
 # checked-in tests/fuzz/seeds/<target>/ plus matching files of robots/ and ../shared (when
 # present), copied into build/fuzz/seeds/<target>/ at each run; new inputs accumulate in
 # build/fuzz/corpus/<target>/. Crashes, timeouts, OOMs and leaks go to
 # build/fuzz/findings/<target>/. Prints one summary line per target; exits 1 when anything was
 # found (or a regression input fails), 2 on usage errors. --keep-going: libFuzzer's fork mode
 # (-fork=1 -ignore_crashes/timeouts/ooms), which goes on after a finding and collects them all
-# (peak RSS is then not reported). CI: scripts/fuzz.sh --seconds 5
+# (peak RSS is then the largest process's, measured by /usr/bin/time). CI: scripts/fuzz.sh --seconds 5
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root="$PWD"
@@ -113,22 +114,37 @@ for t in "${targets[@]}"; do
   [[ $keep_going -eq 0 ]] || mode=(-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
   dict=()
   [[ -f "$root/tests/fuzz/dicts/$t.dict" ]] && dict=(-dict="$root/tests/fuzz/dicts/$t.dict")
-  # Every regression input must run clean (libFuzzer executes files given as arguments).
-  regressions=("$root/tests/fuzz/regressions/$t"/*)
+  # Every regression input must run clean (libFuzzer executes files given as arguments), except
+  # those listed in tests/fuzz/regressions/KNOWN (bugs being fixed): they are replayed and
+  # reported, and one that passes asks to be taken off the list.
   replay="none"
-  if [[ -e "${regressions[0]}" ]]; then
-    if "$bin" -timeout=10 -rss_limit_mb="$rss_mb" -max_len="$(max_len "$t")" "${regressions[@]}" \
-      >"$build/logs/$t.regressions.log" 2>&1; then
-      replay="${#regressions[@]} ok"
+  ok=0; failed=(); open_bugs=0; fixed=()
+  : >"$build/logs/$t.regressions.log"
+  for input in "$root/tests/fuzz/regressions/$t"/*; do
+    [[ -f "$input" ]] || continue
+    name="$t/$(basename "$input")"
+    known=0
+    grep -qxF "$name" "$root/tests/fuzz/regressions/KNOWN" 2>/dev/null && known=1
+    if "$bin" -timeout=10 -rss_limit_mb="$rss_mb" "$input" >>"$build/logs/$t.regressions.log" 2>&1
+    then
+      ok=$((ok + 1)); [[ $known -eq 0 ]] || fixed+=("$name")
+    elif [[ $known -eq 1 ]]; then
+      open_bugs=$((open_bugs + 1))
     else
-      replay="FAILED (see $build/logs/$t.regressions.log)"
-      status=1
+      failed+=("$name")
     fi
+  done
+  if [[ $((ok + open_bugs + ${#failed[@]})) -gt 0 ]]; then
+    replay="$ok ok, $open_bugs known open, ${#failed[@]} failed"
+    [[ ${#failed[@]} -eq 0 ]] || { status=1; echo "   regression failed: ${failed[*]}"; }
+    [[ ${#fixed[@]} -eq 0 ]] || echo "   known bug now passes (remove from KNOWN): ${fixed[*]}"
   fi
   before=$(find "$findings" -type f | wc -l)
   echo "== fuzz_$t: ${seconds} s, -rss_limit_mb=$rss_mb, log $log"
   set +e
-  timeout --kill-after=30 $((seconds + 300)) "$bin" -max_total_time="$seconds" -timeout=10 \
+  timer=()
+  [[ ! -x /usr/bin/time ]] || timer=(/usr/bin/time -o "$build/logs/$t.maxrss" -f '%M')
+  "${timer[@]}" timeout --kill-after=30 $((seconds + 300)) "$bin" -max_total_time="$seconds" -timeout=10 \
     -rss_limit_mb="$rss_mb" -max_len="$(max_len "$t")" -print_final_stats=1 \
     -artifact_prefix="$findings/" "${mode[@]}" "${dict[@]}" "$corpus" "$build/seeds/$t" >"$log" 2>&1
   rc=$?
@@ -137,7 +153,9 @@ for t in "${targets[@]}"; do
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)
   [[ -n "$execs" ]] || execs=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#' || true)
   peak=$(grep -o 'stat::peak_rss_mb: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)
-  [[ -n "$peak" ]] || peak=$(grep -o 'rss: [0-9]*Mb' "$log" | tail -1 | grep -o '[0-9]*' || true)
+  if [[ -z "$peak" && -s "$build/logs/$t.maxrss" ]]; then
+    peak=$(( $(tail -1 "$build/logs/$t.maxrss" | grep -o '^[0-9]*') / 1024 ))
+  fi
   new=$((after - before))
   if [[ $rc -ne 0 || $new -ne 0 ]]; then
     status=1
