@@ -16,7 +16,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root="$PWD"
 shared="$root/../shared"
-build="$root/build/fuzz"
+build="${FUZZ_BUILD_DIR:-$root/build/fuzz}"  # FUZZ_BUILD_DIR: another build folder
 seconds=600
 rss_mb=2048
 keep_going=0
