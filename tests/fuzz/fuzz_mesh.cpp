@@ -1,0 +1,44 @@
+// libFuzzer target: mesh bytes -> read_mesh_vertices (assimp) -> convex hull. The library reads
+// meshes from files only, so the input goes to a per-process temp file whose extension follows
+// the content: '<' first -> .dae, "solid" or binary bytes -> .stl, otherwise .obj.
+#include <Eigen/Core>
+#include <cstring>
+#include <hullcheck/convex_hull.hpp>
+#include <hullcheck/robot/mesh_file.hpp>
+#include <string>
+#include <vector>
+
+#include "fuzz_support.hpp"
+
+namespace {
+
+// The extension URDF meshes of this content would carry.
+const char* extension_for(const std::uint8_t* data, std::size_t size) {
+  std::size_t i = 0;
+  while (i < size && (data[i] == ' ' || data[i] == '\t' || data[i] == '\r' || data[i] == '\n')) {
+    ++i;
+  }
+  if (i < size && data[i] == '<') return ".dae";
+  if (size - i >= 5 && std::memcmp(data + i, "solid", 5) == 0) return ".stl";
+  for (std::size_t k = 0; k < size && k < 256; ++k) {
+    if (data[k] == 0 || data[k] >= 0x80) return ".stl";
+  }
+  return ".obj";
+}
+
+}  // namespace
+
+// One input: a mesh file's bytes.
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace hullcheck;
+  const std::string file = fuzz::temp_path(extension_for(data, size));
+  fuzz::write_file(file, data, size);
+  fuzz::expect_input_errors_only([&] {
+    const std::vector<Eigen::Vector3d> vertices =
+        read_mesh_vertices(file, Eigen::Vector3d(1.0, 1.0, 1.0));
+    const ConvexHull hull(vertices);
+    static_cast<void>(hull);
+  });
+  std::remove(file.c_str());
+  return 0;
+}
