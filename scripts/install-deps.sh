@@ -6,9 +6,10 @@ packages=(cmake g++ make clang-format pkg-config
   libompl-dev libeigen3-dev liburdfdom-dev libassimp-dev libqhull-dev libyaml-cpp-dev
   libtinyxml2-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   libfcl-dev libccd-dev libbullet-dev liborocos-kdl-dev libkdl-parser-dev
-  ompl-demos libjs-three)
+  ompl-demos libjs-three clang libclang-rt-dev)
 # ompl-demos: ompl_benchmark_statistics, to check the benchmark logs; libjs-three: three.js,
-# inlined into the HTML viewer that plan/validate write.
+# inlined into the HTML viewer that plan/validate write; clang + libclang-rt-dev: libFuzzer and
+# the sanitizer runtimes for the fuzz targets (scripts/fuzz.sh).
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -4,13 +4,15 @@
 #  2. Release build with warnings as errors: GoogleTest suites and benchmark smoke runs (ctest),
 #  3. the same tests built with AddressSanitizer + UndefinedBehaviorSanitizer,
 #  4. multi-threaded planning (OmplThreads.*) built with ThreadSanitizer,
-#  5. install into a temporary prefix and build a consumer with find_package(hullcheck).
+#  5. install into a temporary prefix and build a consumer with find_package(hullcheck),
+#  6. the libFuzzer targets of the readers (clang, ASan + UBSan): every regression input
+#     replayed, then a few seconds of fuzzing each (scripts/fuzz.sh; long runs: see README).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 jobs="$(nproc)"
 stage_start=$SECONDS
-# Prints how long the previous stage took (CI budget: the whole script in 10 minutes on 2 cores).
+# Prints how long the previous stage took (CI budget: the whole script in 15 minutes on 2 cores).
 stage() {
   echo "   ($((SECONDS - stage_start)) s)"
   stage_start=$SECONDS
@@ -55,4 +57,8 @@ cmake -S tests/install_consumer -B build/ci-consumer -DCMAKE_PREFIX_PATH="$prefi
 cmake --build build/ci-consumer -j"$jobs"
 ./build/ci-consumer/hullcheck_consumer
 rm -rf "$prefix"
+
+stage "libFuzzer targets: regressions replayed, then 5 s of fuzzing each"
+# Its own build folder at -O0 (three times faster to compile than the long runs' -O1 -g1).
+FUZZ_BUILD_DIR=build/ci-fuzz FUZZ_CXX_FLAGS=-O0 scripts/fuzz.sh --seconds 5
 stage "all checks passed in $SECONDS s"

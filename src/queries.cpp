@@ -12,16 +12,19 @@ namespace hullcheck {
 namespace {
 
 /// Every public query checks both poses with validate_pose's test (finite, translation within
-/// kMaxLength, rotation rigid to kRotationTolerance); the diagnosis is built only when it fails.
-void require_rigid(const Eigen::Isometry3d& pose, const char* what) {
-  if (!detail::pose_is_rigid(pose)) validate_pose(pose, what);
+/// kMaxLength, rotation rigid to kRotationTolerance), both at once; the diagnosis is built only
+/// when it fails.
+void require_rigid(const Eigen::Isometry3d& pose_a, const Eigen::Isometry3d& pose_b) {
+  if (!detail::poses_are_rigid(pose_a, pose_b)) {
+    validate_pose(pose_a, "pose_a");
+    validate_pose(pose_b, "pose_b");
+  }
 }
 
 detail::Answer checked_query(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                              const Eigen::Isometry3d& pose_b, detail::QueryKind kind,
                              const QueryOptions& options, double cutoff = INFINITY) {
-  require_rigid(pose_a, "pose_a");
-  require_rigid(pose_b, "pose_b");
+  require_rigid(pose_a, pose_b);
   return detail::query(a, pose_a, b, pose_b, kind, options, nullptr, cutoff);
 }
 
@@ -29,8 +32,7 @@ detail::Answer checked_query(const Shape& a, const Eigen::Isometry3d& pose_a, co
 
 bool intersect(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                const Eigen::Isometry3d& pose_b, const QueryOptions& options) {
-  require_rigid(pose_a, "pose_a");
-  require_rigid(pose_b, "pose_b");
+  require_rigid(pose_a, pose_b);
   return detail::intersect_query(a, pose_a, b, pose_b, options);
 }
 
@@ -42,8 +44,7 @@ DistanceResult distance(const Shape& a, const Eigen::Isometry3d& pose_a, const S
 
 PenetrationResult penetration(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                               const Eigen::Isometry3d& pose_b, const QueryOptions& options) {
-  require_rigid(pose_a, "pose_a");
-  require_rigid(pose_b, "pose_b");
+  require_rigid(pose_a, pose_b);
   return detail::to_penetration_result(detail::penetration_query(a, pose_a, b, pose_b, options));
 }
 

@@ -15,8 +15,9 @@ inline constexpr double kMaxLength = 1e6;
 /// point, a flat box) are accepted.
 inline constexpr double kMinScale = 1e-6;
 
-/// Largest deviation of a pose's linear part from a rotation: |c0.c0 - 1|, |c1.c1 - 1|,
-/// |c0.c1| and each component of c0 x c1 - c2 (columns c0, c1, c2) must not exceed it.
+/// Largest deviation of a pose's linear part from a rotation: the sum of |c0.c0 - 1|,
+/// |c1.c1 - 1|, |c0.c1| and the absolute components of c0 x c1 - c2 (columns c0, c1, c2) must
+/// not exceed it. Rotations built in double precision deviate by ~1e-15.
 inline constexpr double kRotationTolerance = 1e-6;
 
 }  // namespace hullcheck

@@ -2,14 +2,15 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <hullcheck/limits.hpp>
 #include <string>
 
 namespace hullcheck::detail {
 
 /// Largest magnitude, m, of a length the loaders accept: shape dimensions, mesh vertex
-/// coordinates, origin translations. Mirrors the core's limit (the Shape and Pose constructors
-/// reject larger values), checked here first so that the message names the file element.
-inline constexpr double kMaxLoadedLength = 1e6;
+/// coordinates, origin translations. The core's limit (Shape, ConvexHull and every query reject
+/// larger values), checked here first so that the message names the file element.
+inline constexpr double kMaxLoadedLength = kMaxLength;
 
 /// Throws InputError "`what`: must be finite and at most 1e+06 m in magnitude (got v)" when
 /// `value` (m) is NaN, infinite or larger in magnitude than kMaxLoadedLength.

@@ -17,6 +17,7 @@
 #include <limits>
 #include <map>
 #include <string_view>
+#include <unordered_set>
 #include <utility>
 
 namespace hullcheck {
@@ -113,8 +114,9 @@ std::uint64_t count_attribute(const std::string& path, const tinyxml2::XMLElemen
   return value;
 }
 
-// Sum of the whitespace-separated integers of a COLLADA <vcount> (saturating).
-std::uint64_t vcount_sum(const std::string& path, const tinyxml2::XMLElement& e) {
+// Sum of the whitespace-separated integers of a COLLADA <vcount>, <p> or <v> (saturating);
+// throws when the text holds anything else (assimp reads such a token as a huge index).
+std::uint64_t integer_list_sum(const std::string& path, const tinyxml2::XMLElement& e) {
   const char* text = e.GetText();
   std::uint64_t sum = 0;
   for (const char* p = text == nullptr ? "" : text; *p != '\0';) {
@@ -128,10 +130,45 @@ std::uint64_t vcount_sum(const std::string& path, const tinyxml2::XMLElement& e)
       value = add_sat(mul_sat(value, 10), static_cast<std::uint64_t>(*p - '0'));
       ++p;
     }
-    if (p == start) fail(path, "<vcount> holds something other than non-negative integers");
+    if (p == start) {
+      fail(path,
+           "<" + std::string(e.Name()) + "> holds something other than non-negative integers");
+    }
     sum = add_sat(sum, value);
   }
   return sum;
+}
+
+// The id attributes of every element of the document.
+std::unordered_set<std::string> element_ids(const tinyxml2::XMLDocument& doc) {
+  std::unordered_set<std::string> ids;
+  std::vector<const tinyxml2::XMLElement*> todo{doc.RootElement()};
+  while (!todo.empty()) {
+    const tinyxml2::XMLElement* e = todo.back();
+    todo.pop_back();
+    if (const char* id = e->Attribute("id")) ids.emplace(id);
+    for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c != nullptr;
+         c = c->NextSiblingElement()) {
+      todo.push_back(c);
+    }
+  }
+  return ids;
+}
+
+// An <input>'s source must name an element of the file ("#id"), and index lists (<p>, <v>)
+// must hold non-negative integers only: assimp 5.2 sizes its arrays from what it reads there
+// even when the source is missing (a 5 KB file made it allocate 2.4 GB).
+void check_references(const std::string& path, const tinyxml2::XMLElement& e,
+                      const std::unordered_set<std::string>& ids) {
+  const std::string_view name = e.Name();
+  if (name == "input") {
+    const char* source = e.Attribute("source");
+    if (source != nullptr && (source[0] != '#' || ids.count(source + 1) == 0)) {
+      fail(path, std::string("<input source=\"") + source + "\"> names no element of the file");
+    }
+  } else if (name == "p" || name == "v") {
+    integer_list_sum(path, e);
+  }
 }
 
 // What the declared counts of a COLLADA document let assimp allocate, estimated from above.
@@ -167,8 +204,8 @@ void add_declared(const std::string& path, const tinyxml2::XMLElement& e, std::u
       inputs = std::max(inputs, count_attribute(path, *in, "offset", 0) + 1);
     }
     const tinyxml2::XMLElement* vcount = e.FirstChildElement("vcount");
-    const std::uint64_t points =
-        vcount != nullptr ? vcount_sum(path, *vcount) : mul_sat(count, name == "lines" ? 2 : 3);
+    const std::uint64_t points = vcount != nullptr ? integer_list_sum(path, *vcount)
+                                                   : mul_sat(count, name == "lines" ? 2 : 3);
     elements = std::max(elements, points);
     budget.points = add_sat(budget.points, points);
     budget.faces = add_sat(budget.faces, count);
@@ -287,11 +324,13 @@ void check_collada(const std::string& path, const std::string& bytes, const Mesh
   if (doc.RootElement() == nullptr) fail(path, "COLLADA file without a root element");
   ColladaBudget budget;
   budget.bytes = mul_sat(bytes.size(), kBytesPerTextByte);
+  const std::unordered_set<std::string> ids = element_ids(doc);
   std::vector<const tinyxml2::XMLElement*> todo{doc.RootElement()};
   while (!todo.empty()) {
     const tinyxml2::XMLElement* e = todo.back();
     todo.pop_back();
     add_declared(path, *e, bytes.size(), budget);
+    check_references(path, *e, ids);
     for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c != nullptr;
          c = c->NextSiblingElement()) {
       todo.push_back(c);
