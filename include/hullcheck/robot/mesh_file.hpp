@@ -1,5 +1,5 @@
-// Reading the vertices of a mesh file (STL binary or ASCII, COLLADA, OBJ, PLY via assimp), with
-// bounded resources.
+// Reading the vertices of a mesh file (STL binary or ASCII, COLLADA, OBJ; other formats assimp
+// reads on request, see MeshLimits), with bounded resources.
 #pragma once
 
 #include <Eigen/Core>
@@ -14,7 +14,7 @@ namespace hullcheck {
 /// InputError before (or, for counts only known after parsing, right after) assimp reads it.
 ///
 /// The memory bound: the file is checked against `max_file_bytes` before it is read, and the
-/// counts a format declares (binary STL's facet count, PLY's element counts, COLLADA's array,
+/// counts a format declares (binary STL's facet count, COLLADA's array,
 /// primitive and accessor counts, vertex-count lists, input offsets and node instancing) are
 /// checked against the file's size and these limits before assimp allocates for them, so a
 /// small file cannot make assimp allocate for a huge declared count. OBJ and ASCII STL declare
@@ -35,7 +35,7 @@ struct MeshLimits {
   /// Largest memory, bytes, assimp may need for the counts a file declares, estimated
   /// conservatively from them (default 2 GiB).
   std::uint64_t max_memory_bytes = 2ull << 30;
-  /// Accept only the formats whose declared counts are checked: STL, OBJ, COLLADA (.dae), PLY.
+  /// Accept only the formats whose declared counts are checked: STL, OBJ, COLLADA (.dae).
   bool vetted_formats_only = true;
 };
 
