@@ -9,19 +9,6 @@
 #include <vector>
 
 namespace hullcheck {
-namespace {
-
-// Indices of the links with collision geometry, ascending.
-std::vector<int> links_with_geometry(const RobotModel& model) {
-  std::vector<int> out;
-  for (int l = 0; l < static_cast<int>(model.links().size()); ++l) {
-    if (!model.link(l).shapes.empty()) out.push_back(l);
-  }
-  return out;
-}
-
-}  // namespace
-
 GeneratedCollisionMatrix generate_collision_matrix(const RobotModel& model,
                                                    const CollisionMatrixOptions& options) {
   if (options.samples < 1) throw InputError("generate_collision_matrix: samples must be >= 1");
@@ -32,7 +19,7 @@ GeneratedCollisionMatrix generate_collision_matrix(const RobotModel& model,
   out.samples = options.samples;
   // Only pairs of links with geometry are reported (and checked): quadratic in those links,
   // not in all links.
-  const std::vector<int> solid = links_with_geometry(model);
+  const std::vector<int> solid = model.links_with_geometry();
   for (std::size_t i = 0; i < solid.size(); ++i) {
     for (std::size_t k = i + 1; k < solid.size(); ++k) {
       if (out.matrix.allowed(solid[i], solid[k])) ++out.adjacent;
@@ -97,7 +84,7 @@ Srdf collision_matrix_to_srdf(const RobotModel& model, const AllowedCollisionMat
   }
   Srdf srdf;
   srdf.robot_name = model.name();
-  const std::vector<int> solid = links_with_geometry(model);
+  const std::vector<int> solid = model.links_with_geometry();
   for (std::size_t i = 0; i < solid.size(); ++i) {
     for (std::size_t k = i + 1; k < solid.size(); ++k) {
       const int a = solid[i];

@@ -411,6 +411,14 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const std::strin
   return model;
 }
 
+std::vector<int> RobotModel::links_with_geometry() const {
+  std::vector<int> out;
+  for (int l = 0; l < static_cast<int>(links_.size()); ++l) {
+    if (!links_[static_cast<std::size_t>(l)].shapes.empty()) out.push_back(l);
+  }
+  return out;
+}
+
 int RobotModel::link_index(const std::string& name) const {
   const auto it = link_by_name_.find(name);
   return it == link_by_name_.end() ? -1 : it->second;

@@ -152,10 +152,7 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
   }
   first_shape[static_cast<std::size_t>(n)] = static_cast<int>(shapes_.size());
   // Pairs of links with geometry only: quadratic in those, not in all links.
-  std::vector<int> solid;
-  for (int l = 0; l < n; ++l) {
-    if (!model_->link(l).shapes.empty()) solid.push_back(l);
-  }
+  const std::vector<int> solid = model_->links_with_geometry();
   for (std::size_t i = 0; i < solid.size(); ++i) {
     for (std::size_t k = i + 1; k < solid.size(); ++k) {
       const int a = solid[i];

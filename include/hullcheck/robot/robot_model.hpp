@@ -125,6 +125,9 @@ class RobotModel {
   const std::vector<Joint>& joints() const { return joints_; }
   const Link& link(int i) const { return links_.at(static_cast<std::size_t>(i)); }
   const Joint& joint(int i) const { return joints_.at(static_cast<std::size_t>(i)); }
+  /// Indices of the links with collision geometry (at least one shape), ascending: the only
+  /// links that take part in collision pairs.
+  std::vector<int> links_with_geometry() const;
   /// Index of the link / joint called `name`, or -1.
   int link_index(const std::string& name) const;
   int joint_index(const std::string& name) const;
