@@ -139,14 +139,23 @@ std::uint64_t integer_list_sum(const std::string& path, const tinyxml2::XMLEleme
   return sum;
 }
 
-// The id attributes of every element of the document.
-std::unordered_set<std::string> element_ids(const tinyxml2::XMLDocument& doc) {
-  std::unordered_set<std::string> ids;
+// The id attributes of a COLLADA document, from one walk: every element's (for <input source>
+// references) and the <node> elements by id (for <instance_node url>; the first of a repeated id).
+struct ColladaIds {
+  std::unordered_set<std::string> all;
+  std::map<std::string, const tinyxml2::XMLElement*> nodes;
+};
+
+ColladaIds collada_ids(const tinyxml2::XMLDocument& doc) {
+  ColladaIds ids;
   std::vector<const tinyxml2::XMLElement*> todo{doc.RootElement()};
   while (!todo.empty()) {
     const tinyxml2::XMLElement* e = todo.back();
     todo.pop_back();
-    if (const char* id = e->Attribute("id")) ids.emplace(id);
+    if (const char* id = e->Attribute("id")) {
+      ids.all.emplace(id);
+      if (std::strcmp(e->Name(), "node") == 0) ids.nodes.emplace(id, e);
+    }
     for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c != nullptr;
          c = c->NextSiblingElement()) {
       todo.push_back(c);
@@ -225,10 +234,11 @@ void add_declared(const std::string& path, const tinyxml2::XMLElement& e, std::u
 // the limits; throws on an instancing cycle.
 class NodeExpansion {
  public:
-  NodeExpansion(const std::string& path, const tinyxml2::XMLDocument& doc, const MeshLimits& limits)
-      : path_(path), limits_(limits) {
-    index_ids(doc.RootElement());
-  }
+  // `nodes_by_id`: the document's <node> elements by id (ColladaIds::nodes).
+  NodeExpansion(const std::string& path,
+                const std::map<std::string, const tinyxml2::XMLElement*>& nodes_by_id,
+                const MeshLimits& limits)
+      : path_(path), limits_(limits), by_id_(nodes_by_id) {}
 
   // Expanded node count of every <node> tree under `root`.
   std::uint64_t count_under(const tinyxml2::XMLElement* root) {
@@ -250,20 +260,6 @@ class NodeExpansion {
   }
 
  private:
-  void index_ids(const tinyxml2::XMLElement* root) {
-    std::vector<const tinyxml2::XMLElement*> todo{root};
-    while (!todo.empty()) {
-      const tinyxml2::XMLElement* e = todo.back();
-      todo.pop_back();
-      const char* id = e->Attribute("id");
-      if (id != nullptr && std::strcmp(e->Name(), "node") == 0) by_id_.emplace(id, e);
-      for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c != nullptr;
-           c = c->NextSiblingElement()) {
-        todo.push_back(c);
-      }
-    }
-  }
-
   // Node count and height (1 for a leaf) of the subtree of `node` after instancing.
   struct Subtree {
     std::uint64_t count = 0;
@@ -310,7 +306,7 @@ class NodeExpansion {
 
   const std::string& path_;
   const MeshLimits& limits_;
-  std::map<std::string, const tinyxml2::XMLElement*> by_id_;
+  const std::map<std::string, const tinyxml2::XMLElement*>& by_id_;
   std::map<const tinyxml2::XMLElement*, Subtree> memo_;
 };
 
@@ -324,13 +320,13 @@ void check_collada(const std::string& path, const std::string& bytes, const Mesh
   if (doc.RootElement() == nullptr) fail(path, "COLLADA file without a root element");
   ColladaBudget budget;
   budget.bytes = mul_sat(bytes.size(), kBytesPerTextByte);
-  const std::unordered_set<std::string> ids = element_ids(doc);
+  const ColladaIds ids = collada_ids(doc);
   std::vector<const tinyxml2::XMLElement*> todo{doc.RootElement()};
   while (!todo.empty()) {
     const tinyxml2::XMLElement* e = todo.back();
     todo.pop_back();
     add_declared(path, *e, bytes.size(), budget);
-    check_references(path, *e, ids);
+    check_references(path, *e, ids.all);
     for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c != nullptr;
          c = c->NextSiblingElement()) {
       todo.push_back(c);
@@ -341,7 +337,7 @@ void check_collada(const std::string& path, const std::string& bytes, const Mesh
               "max_vertices");
   check_limit(path, "estimated memory (bytes) for the declared counts", budget.bytes,
               limits.max_memory_bytes, "max_memory_bytes");
-  NodeExpansion nodes(path, doc, limits);
+  NodeExpansion nodes(path, ids.nodes, limits);
   check_limit(path, "node count after <instance_node> expansion",
               nodes.count_under(doc.RootElement()), limits.max_nodes, "max_nodes");
 }
