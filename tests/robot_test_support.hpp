@@ -19,6 +19,14 @@
 
 namespace hullcheck::test {
 
+/// Load options with every mesh as one convex hull (MeshGeometry::kHull), for tests of the
+/// hull itself.
+inline RobotLoadOptions hull_options() {
+  RobotLoadOptions options;
+  options.mesh_geometry = MeshGeometry::kHull;
+  return options;
+}
+
 /// A robot description on disk.
 struct RobotFile {
   std::string id;    // short name for test output

@@ -33,7 +33,8 @@ OwnArm own_arm_adjacent_allowed() {
 
 // Minimum signed distance over every checked self pair, each query cold.
 double brute_force_self_clearance(const RobotModel& model, const AllowedCollisionMatrix& matrix,
-                                  const std::vector<Eigen::Isometry3d>& poses) {
+                                  const std::vector<Eigen::Isometry3d>& poses,
+                                  Status* status = nullptr) {
   double best = INFINITY;
   const int n = static_cast<int>(model.links().size());
   for (int a = 0; a < n; ++a) {
@@ -41,10 +42,13 @@ double brute_force_self_clearance(const RobotModel& model, const AllowedCollisio
       if (matrix.allowed(a, b)) continue;
       for (const CollisionShape& sa : model.link(a).shapes) {
         for (const CollisionShape& sb : model.link(b).shapes) {
-          best = std::min(best,
-                          signed_distance(sa.shape, poses[static_cast<std::size_t>(a)] * sa.origin,
-                                          sb.shape, poses[static_cast<std::size_t>(b)] * sb.origin)
-                              .signed_distance);
+          const SignedDistanceResult r =
+              signed_distance(sa.shape, poses[static_cast<std::size_t>(a)] * sa.origin, sb.shape,
+                              poses[static_cast<std::size_t>(b)] * sb.origin);
+          if (r.signed_distance < best) {
+            best = r.signed_distance;
+            if (status != nullptr) *status = r.status;
+          }
         }
       }
     }
@@ -75,7 +79,7 @@ TEST(ClearanceWarmStart, AgreesWithColdBruteForce) {
   const CollisionChecker checker(arm.model, arm.matrix, PlanningScene{});
   std::mt19937_64 rng(17);
   std::vector<Eigen::Isometry3d> poses;
-  int overlapping = 0, apart = 0;
+  int overlapping = 0, apart = 0, flagged_states = 0;
   struct Set {
     double beyond;
     int turns;
@@ -85,14 +89,21 @@ TEST(ClearanceWarmStart, AgreesWithColdBruteForce) {
       const Eigen::VectorXd q = draw(*arm.model, rng, set.beyond, set.turns);
       arm.model->compute_link_poses(q, poses);
       const ClearanceResult c = checker.clearance(q);
-      const double brute = brute_force_self_clearance(*arm.model, arm.matrix, poses);
-      // Both within the query tolerance (1e-10 x size, the arm is about 1 m) of the truth.
-      ASSERT_NEAR(c.distance, brute, 2e-10)
+      Status brute_status = Status::kConverged;
+      const double brute = brute_force_self_clearance(*arm.model, arm.matrix, poses, &brute_status);
+      // Both within the query tolerance (1e-10 x size, the arm is about 1 m) of the truth when
+      // both converged. EPA may stop at its storage cap on deep overlaps of vertex-rich pieces
+      // of decomposed links (flagged kIterationCap, the best depth so far): then both are
+      // lower bounds on the depth, and near each other.
+      const bool flagged = c.status != Status::kConverged || brute_status != Status::kConverged;
+      flagged_states += flagged;
+      ASSERT_NEAR(c.distance, brute, flagged ? 1e-3 : 2e-10)
           << "beyond " << set.beyond << ", turns " << set.turns << ", q = " << q.transpose();
       ASSERT_NEAR((c.point_b - c.point_a).dot(c.normal), c.distance, 1e-9);
       (c.distance < 0.0 ? overlapping : apart) += 1;
     }
   }
+  EXPECT_LT(flagged_states, overlapping / 10);
   EXPECT_GT(overlapping, 50);  // both signs, so EPA from a grid simplex is exercised too
   EXPECT_GT(apart, 50);
 }

@@ -522,8 +522,21 @@ TEST_P(RobotUrdfCounts, LinksJointsShapesVariablesAndShapeKindsMatchTheUrdf) {
 
   EXPECT_EQ(model.links().size(), urdf.links.size());
   EXPECT_EQ(model.joints().size(), urdf.joints.size());
+  // One <collision> element: one shape, or consecutive pieces 0..n-1 of one decomposed mesh.
   std::size_t shapes = 0;
-  for (const Link& l : model.links()) shapes += l.shapes.size();
+  for (const Link& l : model.links()) {
+    int element = -1;
+    for (const CollisionShape& s : l.shapes) {
+      if (s.piece == 0) {
+        ++shapes;
+        EXPECT_EQ(s.element, element + 1) << l.name;
+        element = s.element;
+      } else {
+        EXPECT_EQ(s.element, element) << l.name;
+      }
+      EXPECT_LT(s.piece, s.piece_count) << l.name;
+    }
+  }
   EXPECT_EQ(shapes, urdf.collision_count());
   EXPECT_EQ(static_cast<std::size_t>(model.variable_count()), urdf.active_count());
   std::cout << "[          ] " << robot.id << ": " << urdf.links.size() << " links, "
@@ -651,7 +664,7 @@ class RobotMeshHulls : public testing::TestWithParam<std::string> {};
 TEST_P(RobotMeshHulls, EveryMeshHullIsTheHullOfTheScaledMeshVertices) {
   HULLCHECK_GET_ROBOT_OR_SKIP(robot);
   const UrdfFile urdf = parse_urdf_file(robot.urdf);
-  const RobotModel model = RobotModel::from_urdf_file(robot.urdf);
+  const RobotModel model = RobotModel::from_urdf_file(robot.urdf, test::hull_options());
   int meshes = 0;
   for (const UrdfLink& ul : urdf.links) {
     const Link& link = model.link(model.link_index(ul.name));
@@ -719,9 +732,10 @@ TEST_P(RobotMirroredMesh, HullIsTheMirrorImageAndFacesOutwards) {
     const std::string uri =
         generated ? "file://" + blob : "package://hullcheck_arm/meshes/" + mesh_name;
     const std::string path = generated ? blob : arm + "/meshes/" + mesh_name;
-    const RobotModel plain = RobotModel::from_urdf_string(one_mesh_urdf(uri, ""), arm + "/urdf");
-    const RobotModel mirrored =
-        RobotModel::from_urdf_string(one_mesh_urdf(uri, scale_text), arm + "/urdf");
+    const RobotModel plain = RobotModel::from_urdf_string(one_mesh_urdf(uri, ""), arm + "/urdf",
+                                                          test::hull_options());
+    const RobotModel mirrored = RobotModel::from_urdf_string(one_mesh_urdf(uri, scale_text),
+                                                             arm + "/urdf", test::hull_options());
     const ConvexHull& h0 = only_hull(plain);
     const ConvexHull& h1 = only_hull(mirrored);
 
@@ -908,7 +922,7 @@ void expect_arm_meshes_from(const RobotModel& model, const RobotModel& reference
     ASSERT_EQ(link.shapes.size(), reference.links()[l].shapes.size());
     for (std::size_t k = 0; k < link.shapes.size(); ++k) {
       const CollisionShape& s = link.shapes[k];
-      if (s.unpadded.kind() != ShapeKind::kConvexHull) continue;
+      if (s.unpadded.kind() != ShapeKind::kConvexHull || s.piece > 0) continue;
       ++meshes;
       const std::string name = fs::path(s.source).filename().string();
       EXPECT_EQ(fs::path(s.source).lexically_normal(),
@@ -1103,7 +1117,7 @@ TEST(RobotLoadTime, SixtyThousandVertexMeshLoadsInWellUnderASecond) {
   for (int round = 0; round < 3; ++round) {
     const double cpu0 = thread_cpu_seconds();
     const auto t0 = Clock::now();
-    loaded = RobotModel::from_urdf_string(xml, dir.str());
+    loaded = RobotModel::from_urdf_string(xml, dir.str(), test::hull_options());
     const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
     const double cpu = thread_cpu_seconds() - cpu0;
     each << (round ? ", " : "") << wall * 1e3;

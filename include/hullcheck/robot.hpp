@@ -5,6 +5,8 @@
 #include <hullcheck/hullcheck.hpp>
 #include <hullcheck/robot/allowed_collision_matrix.hpp>
 #include <hullcheck/robot/collision_matrix_generation.hpp>
+#include <hullcheck/robot/convex_decomposition.hpp>
+#include <hullcheck/robot/decomposition_cache.hpp>
 #include <hullcheck/robot/mesh_file.hpp>
 #include <hullcheck/robot/planning_group.hpp>
 #include <hullcheck/robot/resource_path.hpp>

@@ -56,8 +56,15 @@ std::string describe(const CollisionShape& s) {
     out << "capsule r " << format("%.4g", capsule->radius) << " length "
         << format("%.4g", 2.0 * capsule->half_length);
   } else if (const auto* hull = std::get_if<ConvexHull>(&g)) {
-    out << "hull " << hull->vertex_count() << " vertices (mesh " << s.mesh_vertex_count << ", "
-        << std::filesystem::path(s.source).filename().string() << ")";
+    if (s.piece_count > 1) {
+      out << s.piece_count << " convex pieces";
+    } else {
+      out << "hull " << hull->vertex_count() << " vertices";
+    }
+    out << " (mesh " << s.mesh_vertex_count << " vertices, "
+        << std::filesystem::path(s.source).filename().string();
+    if (s.mesh_excess >= 0.0) out << format(", within %.2f mm of it", 1e3 * s.mesh_excess);
+    out << ")";
   }
   const Eigen::Vector3d t = s.origin.translation();
   if (!t.isZero(0.0) || !s.origin.linear().isIdentity(0.0)) {
@@ -99,7 +106,19 @@ void print_model(const RobotModel& model) {
   for (const Link& l : model.links()) {
     std::printf("  %-28s parent %-24s padding %g\n", l.name.c_str(),
                 l.parent_joint < 0 ? "-" : model.joint(l.parent_joint).name.c_str(), l.padding);
-    for (const CollisionShape& s : l.shapes) std::cout << "      " << describe(s) << "\n";
+    for (std::size_t i = 0; i < l.shapes.size(); ++i) {
+      const CollisionShape& s = l.shapes[i];
+      if (s.piece > 0) continue;  // a decomposed mesh: described once, its pieces below
+      std::cout << "      " << describe(s) << "\n";
+      if (s.piece_count > 1) {
+        std::cout << "        piece vertices:";
+        for (int k = 0; k < s.piece_count; ++k) {
+          const auto& piece = std::get<ConvexHull>(l.shapes[i + static_cast<std::size_t>(k)].unpadded.geometry());
+          std::cout << ' ' << piece.vertex_count();
+        }
+        std::cout << "\n";
+      }
+    }
     if (l.shapes.empty()) std::cout << "      (no collision geometry)\n";
   }
 }

@@ -16,9 +16,29 @@ void RobotOptions::add_to(CLI::App& command, bool with_srdf) {
   if (with_srdf) {
     command.add_option("--srdf", srdf, "MoveIt SRDF: collision matrix, groups, named states");
   }
+  command
+      .add_option("--mesh-geometry", mesh_geometry,
+                  "Meshes as convex pieces within --tolerance of the mesh (decompose, default) "
+                  "or as one convex hull each (hull)")
+      ->check(CLI::IsMember({"hull", "decompose"}));
+  command
+      .add_option("--tolerance", tolerance,
+                  "Decomposition tolerance, m: how far the pieces may reach beyond a mesh "
+                  "(default 0.003)")
+      ->check(finite_in(1e-6, 1e6));
+  command.add_option("--max-pieces", max_pieces, "Most convex pieces per mesh (default 32)")
+      ->check(integer_in(1, 1024));
+  command.add_option("--cache-dir", cache_dir,
+                     "Folder of cached decompositions (default $HULLCHECK_CACHE_DIR, "
+                     "$XDG_CACHE_HOME/hullcheck or ~/.cache/hullcheck)");
+  command.add_flag("--no-cache", no_cache, "Decompose meshes without reading or writing the cache");
 }
 
 std::shared_ptr<RobotModel> RobotOptions::load() const {
+  return std::make_shared<RobotModel>(RobotModel::from_urdf_file(urdf, load_options()));
+}
+
+RobotLoadOptions RobotOptions::load_options() const {
   RobotLoadOptions options;
   for (const std::string& p : packages) {
     const std::size_t eq = p.find('=');
@@ -28,7 +48,12 @@ std::shared_ptr<RobotModel> RobotOptions::load() const {
     options.packages[p.substr(0, eq)] = p.substr(eq + 1);
   }
   options.default_padding = padding;
-  return std::make_shared<RobotModel>(RobotModel::from_urdf_file(urdf, options));
+  options.mesh_geometry = mesh_geometry == "hull" ? MeshGeometry::kHull : MeshGeometry::kDecompose;
+  options.decomposition.tolerance = tolerance;
+  options.decomposition.max_pieces = max_pieces;
+  options.decomposition_cache_dir = cache_dir;
+  options.use_decomposition_cache = !no_cache;
+  return options;
 }
 
 Srdf RobotOptions::load_srdf() const { return srdf.empty() ? Srdf{} : read_srdf_file(srdf); }

@@ -1,4 +1,5 @@
-// Options shared by the subcommands that load a robot: --robot, --package, --srdf, --padding.
+// Options shared by the subcommands that load a robot: --robot, --package, --srdf, --padding,
+// and how meshes become convex shapes (--mesh-geometry, --tolerance, --cache-dir).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -15,11 +16,19 @@ struct RobotOptions {
   std::vector<std::string> packages;  // NAME=DIR
   std::string srdf;
   double padding = 0.0;
+  std::string mesh_geometry = "decompose";  // "hull" or "decompose"
+  double tolerance = DecompositionOptions{}.tolerance;
+  int max_pieces = DecompositionOptions{}.max_pieces;
+  std::string cache_dir;  // empty: the default folder
+  bool no_cache = false;
 
-  /// Adds --robot (required), --package (repeatable), --padding; --srdf when `with_srdf`.
+  /// Adds --robot (required), --package (repeatable), --padding, --mesh-geometry,
+  /// --tolerance, --max-pieces, --cache-dir, --no-cache; --srdf when `with_srdf`.
   void add_to(CLI::App& command, bool with_srdf);
   /// Loads the URDF; throws InputError for a malformed --package or a bad robot.
   std::shared_ptr<RobotModel> load() const;
+  /// The RobotLoadOptions these options describe (load() uses them).
+  RobotLoadOptions load_options() const;
   /// The SRDF given with --srdf (parsed), or an empty Srdf when none was given.
   Srdf load_srdf() const;
 };

@@ -394,26 +394,37 @@ class NoFilesIOSystem : public Assimp::IOSystem {
   void Close(Assimp::IOStream* stream) override { delete stream; }
 };
 
+// Appends every mesh instance below `node` to `out` (vertices transformed to the file's model
+// frame and scaled; faces as fans, reversed when `mirror`); triangles only when `with_faces`.
 void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent,
-             const Eigen::Vector3d& scale, std::vector<Eigen::Vector3d>* out) {
+             const Eigen::Vector3d& scale, bool with_faces, bool mirror, TriangleMesh* out) {
   const aiMatrix4x4 transform = parent * node.mTransformation;
   for (unsigned m = 0; m < node.mNumMeshes; ++m) {
     const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
+    const auto first = static_cast<std::uint32_t>(out->vertices.size());
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
       const aiVector3D p = transform * mesh.mVertices[v];
-      out->emplace_back(scale.x() * p.x, scale.y() * p.y, scale.z() * p.z);
+      out->vertices.emplace_back(scale.x() * p.x, scale.y() * p.y, scale.z() * p.z);
+    }
+    if (!with_faces) continue;
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      for (unsigned k = 2; k < face.mNumIndices; ++k) {
+        std::array<std::uint32_t, 3> t{first + face.mIndices[0], first + face.mIndices[k - 1],
+                                       first + face.mIndices[k]};
+        if (mirror) std::swap(t[1], t[2]);
+        out->triangles.push_back(t);
+      }
     }
   }
   for (unsigned c = 0; c < node.mNumChildren; ++c) {
-    collect(scene, *node.mChildren[c], transform, scale, out);
+    collect(scene, *node.mChildren[c], transform, scale, with_faces, mirror, out);
   }
 }
 
-}  // namespace
-
-std::vector<Eigen::Vector3d> read_mesh_vertices(const std::string& path,
-                                                const Eigen::Vector3d& scale,
-                                                const MeshLimits& limits) {
+// read_mesh and read_mesh_vertices: the vetted import, with or without the faces.
+TriangleMesh import_mesh(const std::string& path, const Eigen::Vector3d& scale,
+                         const MeshLimits& limits, bool with_faces) {
   if (!scale.allFinite()) {
     throw InputError("mesh '" + path + "': scale is not finite");
   }
@@ -423,27 +434,41 @@ std::vector<Eigen::Vector3d> read_mesh_vertices(const std::string& path,
   Assimp::Importer importer;
   importer.SetIOHandler(new NoFilesIOSystem);  // the importer owns it
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
-  // Only vertices are needed: no triangulation, no normals, no vertex joining (the hull
-  // computation handles duplicates). The structure is validated (indices in range).
-  // Read from the checked bytes, the format chosen by the extension.
+  // No triangulation, no normals, no vertex joining (the hull computation handles duplicates;
+  // faces become fans here). The structure is validated (indices in range). Read from the
+  // checked bytes, the format chosen by the extension.
   const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(),
                                                      aiProcess_ValidateDataStructure, ext.c_str());
   if (scene == nullptr || scene->mRootNode == nullptr) {
     throw InputError("mesh '" + path + "': cannot be read: " + importer.GetErrorString());
   }
   check_scene_counts(path, *scene, limits);
-  std::vector<Eigen::Vector3d> vertices;
+  TriangleMesh mesh;
   std::size_t total = 0;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) total += scene->mMeshes[m]->mNumVertices;
-  vertices.reserve(total);
-  collect(*scene, *scene->mRootNode, aiMatrix4x4(), scale, &vertices);
-  if (vertices.empty()) {
+  mesh.vertices.reserve(total);
+  const bool mirror = (scale.array() < 0.0).count() % 2 == 1;
+  collect(*scene, *scene->mRootNode, aiMatrix4x4(), scale, with_faces, mirror, &mesh);
+  if (mesh.vertices.empty()) {
     throw InputError("mesh '" + path + "': holds no vertices");
   }
-  for (const Eigen::Vector3d& v : vertices) {
+  for (const Eigen::Vector3d& v : mesh.vertices) {
     if (!v.allFinite()) throw InputError("mesh '" + path + "': has a non-finite vertex");
   }
-  return vertices;
+  return mesh;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector3d> read_mesh_vertices(const std::string& path,
+                                                const Eigen::Vector3d& scale,
+                                                const MeshLimits& limits) {
+  return import_mesh(path, scale, limits, false).vertices;
+}
+
+TriangleMesh read_mesh(const std::string& path, const Eigen::Vector3d& scale,
+                       const MeshLimits& limits) {
+  return import_mesh(path, scale, limits, true);
 }
 
 }  // namespace hullcheck

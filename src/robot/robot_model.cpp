@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <hullcheck/errors.hpp>
+#include <hullcheck/robot/decomposition_cache.hpp>
 #include <hullcheck/robot/mesh_file.hpp>
 #include <hullcheck/robot/robot_model.hpp>
 #include <sstream>
@@ -129,9 +130,11 @@ struct MeshKey {
   }
 };
 
-struct MeshHull {
-  ConvexHull hull;
+// A mesh file's convex shapes (one hull, or the pieces of its decomposition).
+struct MeshShapes {
+  std::vector<ConvexHull> hulls;
   std::size_t vertex_count;
+  double excess;  // CollisionShape::mesh_excess
 };
 
 class Loader {
@@ -139,7 +142,10 @@ class Loader {
   Loader(const std::string& source, const std::string& base_dir, const RobotLoadOptions& options)
       : source_(source), base_dir_(base_dir), options_(options) {}
 
-  CollisionShape make_shape(const urdf::Collision& collision, const std::string& link_name) {
+  // The shapes of `link_name`'s <collision> element number `element`: one, or one per piece
+  // of a decomposed mesh.
+  std::vector<CollisionShape> make_shapes(const urdf::Collision& collision,
+                                          const std::string& link_name, int element) {
     const std::string where = "URDF '" + source_ + "': link '" + link_name + "'";
     if (!collision.geometry) throw InputError(where + ": <collision> without <geometry>");
     CollisionShape out{Sphere(0.0),
@@ -149,6 +155,7 @@ class Loader {
                        0.0,
                        std::string(),
                        0};
+    out.element = element;
     out.origin = to_isometry(collision.origin);
     detail::check_lengths(out.origin.translation(), where + ": <collision><origin xyz>");
     const urdf::Geometry& g = *collision.geometry;
@@ -180,20 +187,19 @@ class Loader {
           const auto& m = static_cast<const urdf::Mesh&>(g);
           const std::string path =
               resolve_resource_path(m.filename, base_dir_, options_.packages, where);
-          const MeshKey key{path, m.scale.x, m.scale.y, m.scale.z};
-          auto it = meshes_.find(key);
-          if (it == meshes_.end()) {
-            const std::vector<Eigen::Vector3d> vertices = read_mesh_vertices(
-                path, Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z), options_.mesh_limits);
-            check_mesh_extent(vertices, where + ": mesh '" + path + "' (after <mesh scale>)");
-            it = meshes_
-                     .emplace(key, MeshHull{ConvexHull(distinct_points(vertices)), vertices.size()})
-                     .first;
-          }
-          out.unpadded = it->second.hull;
-          out.mesh_vertex_count = it->second.vertex_count;
+          const MeshShapes& mesh =
+              mesh_shapes(path, Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z), where);
+          out.mesh_vertex_count = mesh.vertex_count;
+          out.mesh_excess = mesh.excess;
           out.source = path;
-          break;
+          out.piece_count = static_cast<int>(mesh.hulls.size());
+          std::vector<CollisionShape> pieces;
+          for (std::size_t k = 0; k < mesh.hulls.size(); ++k) {
+            out.unpadded = mesh.hulls[k];
+            out.piece = static_cast<int>(k);
+            pieces.push_back(out);
+          }
+          return pieces;
         }
         default:
           throw InputError("unknown geometry type");
@@ -205,14 +211,47 @@ class Loader {
       if (what.rfind("URDF '", 0) == 0) throw;
       throw InputError(where + ": <" + geometry_tag(g.type) + ">: " + what);
     }
-    return out;
+    return {out};
   }
 
  private:
+  // The convex shapes of the mesh file at `path` scaled by `scale`, read (and decomposed) once
+  // per file and scale.
+  const MeshShapes& mesh_shapes(const std::string& path, const Eigen::Vector3d& scale,
+                                const std::string& where) {
+    const MeshKey key{path, scale.x(), scale.y(), scale.z()};
+    auto it = meshes_.find(key);
+    if (it != meshes_.end()) return it->second;
+    const std::string what = where + ": mesh '" + path + "' (after <mesh scale>)";
+    MeshShapes shapes{{}, 0, -1.0};
+    if (options_.mesh_geometry == MeshGeometry::kHull) {
+      const std::vector<Eigen::Vector3d> vertices =
+          read_mesh_vertices(path, scale, options_.mesh_limits);
+      check_mesh_extent(vertices, what);
+      shapes.hulls.emplace_back(distinct_points(vertices));
+      shapes.vertex_count = vertices.size();
+    } else {
+      const std::string cache_dir =
+          !options_.use_decomposition_cache ? std::string()
+          : options_.decomposition_cache_dir.empty() ? default_decomposition_cache_dir()
+                                                     : options_.decomposition_cache_dir;
+      const MeshDecomposition d = decompose_mesh_file(
+          path, scale, options_.decomposition, options_.mesh_limits, cache_dir,
+          [&](const TriangleMesh& mesh) { check_mesh_extent(mesh.vertices, what); });
+      for (const auto& piece : d.decomposition.pieces) {
+        check_mesh_extent(piece, what);  // a cached entry's points, checked like a mesh's
+        shapes.hulls.emplace_back(piece);
+      }
+      shapes.vertex_count = d.vertex_count;
+      shapes.excess = d.decomposition.bound;
+    }
+    return meshes_.emplace(key, std::move(shapes)).first->second;
+  }
+
   std::string source_;
   std::string base_dir_;
   const RobotLoadOptions& options_;
-  std::map<MeshKey, MeshHull> meshes_;
+  std::map<MeshKey, MeshShapes> meshes_;
 };
 
 }  // namespace
@@ -269,8 +308,13 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const std::strin
     Link link;
     link.name = ulink->name;
     link.parent_joint = parent_joint;
+    int element = 0;
     for (const urdf::CollisionSharedPtr& c : ulink->collision_array) {
-      if (c) link.shapes.push_back(loader.make_shape(*c, ulink->name));
+      if (!c) continue;
+      for (CollisionShape& shape : loader.make_shapes(*c, ulink->name, element)) {
+        link.shapes.push_back(std::move(shape));
+      }
+      ++element;
     }
     const int link_id = static_cast<int>(model.links_.size());
     if (parent_joint >= 0)

@@ -38,8 +38,8 @@ void local_box(const Shape& shape, Eigen::Vector3d* center, Eigen::Vector3d* hal
 }
 
 // Robot shapes per group of the obstacle broad phase: a group's bounding ball is tested
-// against an obstacle first, its shapes only when it is not clear (consecutive shapes follow
-// the kinematic chain, so a group is a few neighbouring links).
+// against an obstacle first, its shapes only when it is not clear (consecutive links follow
+// the kinematic chain, so a group is a few neighbouring links, or one decomposed link).
 constexpr int kGroupSize = 4;
 
 // Bounds on the signed distance of A and B from their supporting planes normal to the unit
@@ -75,6 +75,7 @@ struct CollisionChecker::Scratch {
   const double* q = nullptr;  // configuration of the current query, when it has one
   std::vector<Eigen::Vector3d> group_centers;
   std::vector<double> group_radii;
+  std::vector<Eigen::Vector3d> link_centers;  // per link_balls_ entry, model frame
   std::vector<std::pair<double, int>> candidates;  // clearance: queue of (lower bound, code)
   std::vector<std::pair<double, int>> nearest;     // clearance: (ball bound, code)
 };
@@ -94,6 +95,7 @@ CollisionChecker::Scratch& CollisionChecker::scratch() const {
     s.group_centers.resize(groups_.size());
     s.group_radii.resize(groups_.size());
   }
+  if (s.link_centers.size() < link_balls_.size()) s.link_centers.resize(link_balls_.size());
   const std::size_t pairs = self_pairs_.size() + environment_pairs_.size();
   if (s.lower_bounds.size() < pairs) {
     s.lower_bounds.resize(pairs);
@@ -151,13 +153,33 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
     }
   }
   first_shape[static_cast<std::size_t>(n)] = static_cast<int>(shapes_.size());
-  // Pairs of links with geometry only: quadratic in those, not in all links.
+  // Pairs of links with geometry only: quadratic in those, not in all links. A link's ball
+  // encloses its shapes' balls (about the middle of their centres' bounding box): a link pair
+  // whose balls are apart needs none of its shape pairs (decomposed links have many).
   const std::vector<int> solid = model_->links_with_geometry();
+  for (int l : solid) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d hi = -lo;
+    for (int sh = first_shape[static_cast<std::size_t>(l)];
+         sh < first_shape[static_cast<std::size_t>(l) + 1]; ++sh) {
+      lo = lo.cwiseMin(shapes_[static_cast<std::size_t>(sh)].center);
+      hi = hi.cwiseMax(shapes_[static_cast<std::size_t>(sh)].center);
+    }
+    const Eigen::Vector3d center = 0.5 * (lo + hi);
+    double radius = 0.0;
+    for (int sh = first_shape[static_cast<std::size_t>(l)];
+         sh < first_shape[static_cast<std::size_t>(l) + 1]; ++sh) {
+      const RobotShape& rs = shapes_[static_cast<std::size_t>(sh)];
+      radius = std::max(radius, (rs.center - center).norm() + rs.radius);
+    }
+    link_balls_.push_back({l, center, radius});
+  }
   for (std::size_t i = 0; i < solid.size(); ++i) {
     for (std::size_t k = i + 1; k < solid.size(); ++k) {
       const int a = solid[i];
       const int b = solid[k];
       if (matrix_.allowed(a, b)) continue;
+      const int begin = static_cast<int>(self_pairs_.size());
       for (int sa = first_shape[static_cast<std::size_t>(a)];
            sa < first_shape[static_cast<std::size_t>(a) + 1]; ++sa) {
         for (int sb = first_shape[static_cast<std::size_t>(b)];
@@ -165,6 +187,8 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
           self_pairs_.push_back({sa, sb});
         }
       }
+      self_blocks_.push_back(
+          {static_cast<int>(i), static_cast<int>(k), begin, static_cast<int>(self_pairs_.size())});
     }
   }
   has_self_pairs_ = !self_pairs_.empty();
@@ -173,9 +197,25 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
     local_box(o.shape, &center, &half);
     boxes_.push_back({o.pose.linear().transpose(), o.pose * center, half});
   }
-  const int shape_count = static_cast<int>(shapes_.size());
-  for (int begin = 0; begin < shape_count; begin += kGroupSize) {
-    groups_.push_back({begin, std::min(begin + kGroupSize, shape_count)});
+  // Groups of whole links, up to kGroupSize shapes; a link with more shapes (a decomposed mesh)
+  // is a group of its own.
+  {
+    int begin = 0, end = 0;
+    for (int l = 0; l < n; ++l) {
+      const int size = first_shape[static_cast<std::size_t>(l) + 1] -
+                       first_shape[static_cast<std::size_t>(l)];
+      if (size == 0) continue;
+      if (end > begin && end - begin + size > kGroupSize) {
+        groups_.push_back({begin, end});
+        begin = end;
+      }
+      end += size;
+      if (size > kGroupSize) {
+        groups_.push_back({begin, end});
+        begin = end;
+      }
+    }
+    if (end > begin) groups_.push_back({begin, end});
   }
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     for (int o = 0; o < static_cast<int>(scene_.obstacles.size()); ++o) {
@@ -274,6 +314,10 @@ void CollisionChecker::place(const std::vector<Eigen::Isometry3d>& link_poses, S
     const RobotShape& rs = shapes_[i];
     s.centers[i] = link_poses[static_cast<std::size_t>(rs.link)] * rs.center;
   }
+  for (std::size_t i = 0; i < link_balls_.size(); ++i) {
+    s.link_centers[i] =
+        link_poses[static_cast<std::size_t>(link_balls_[i].link)] * link_balls_[i].center;
+  }
   // Group balls: around the mean of the members' centres, enclosing every member's ball.
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     const ShapeGroup& group = groups_[g];
@@ -360,19 +404,31 @@ bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_po
       }
     }
   }
-  for (const SelfPair& p : self_pairs_) {
-    const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
-    const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
-    const double reach = a.radius + b.radius;
-    if ((s.centers[static_cast<std::size_t>(p.a)] - s.centers[static_cast<std::size_t>(p.b)])
-            .squaredNorm() > reach * reach) {
-      continue;
+  for (const SelfBlock& block : self_blocks_) {
+    if (block.end - block.begin > 1) {
+      const double reach = link_balls_[static_cast<std::size_t>(block.link_a)].radius +
+                           link_balls_[static_cast<std::size_t>(block.link_b)].radius;
+      if ((s.link_centers[static_cast<std::size_t>(block.link_a)] -
+           s.link_centers[static_cast<std::size_t>(block.link_b)])
+              .squaredNorm() > reach * reach) {
+        continue;
+      }
     }
-    if (intersect(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
-                  shape_pose(p.a, s),
-                  model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
-                  shape_pose(p.b, s))) {
-      return false;
+    for (int k = block.begin; k < block.end; ++k) {
+      const SelfPair& p = self_pairs_[static_cast<std::size_t>(k)];
+      const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
+      const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
+      const double reach = a.radius + b.radius;
+      if ((s.centers[static_cast<std::size_t>(p.a)] - s.centers[static_cast<std::size_t>(p.b)])
+              .squaredNorm() > reach * reach) {
+        continue;
+      }
+      if (intersect(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
+                    shape_pose(p.a, s),
+                    model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
+                    shape_pose(p.b, s))) {
+        return false;
+      }
     }
   }
   return true;

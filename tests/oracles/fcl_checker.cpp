@@ -39,17 +39,22 @@ Geometry to_fcl(const Shape& shape, const std::string& what) {
     out = std::make_shared<fcl::Capsuled>(capsule->radius, 2.0 * capsule->half_length);
   } else {
     const auto& hull = std::get<ConvexHull>(g);
-    if (hull.dimension() != 3) {
-      throw std::invalid_argument("FclChecker: " + what + " is a flat hull (dimension " +
-                                  std::to_string(hull.dimension()) + ")");
+    if (hull.dimension() < 2) {
+      throw std::invalid_argument("FclChecker: " + what + " is a hull of dimension " +
+                                  std::to_string(hull.dimension()));
     }
     auto vertices = std::make_shared<std::vector<Eigen::Vector3d>>(hull.vertices());
     auto faces = std::make_shared<std::vector<int>>();
-    faces->reserve(hull.triangles().size() * 4);
+    faces->reserve(hull.triangles().size() * 8);
     for (const auto& t : hull.triangles()) faces->insert(faces->end(), {3, t[0], t[1], t[2]});
-    // throw_if_invalid: a triangulation FCL cannot use (not watertight) must not go unnoticed.
+    const bool flat = hull.dimension() == 2;
+    if (flat) {  // a polygon: its fan from both sides (FCL's solvers use only the vertices)
+      for (const auto& t : hull.triangles()) faces->insert(faces->end(), {3, t[0], t[2], t[1]});
+    }
+    // throw_if_invalid: a triangulation FCL cannot use (not watertight) must not go unnoticed;
+    // a polygon is not a closed surface, so the check is off for it.
     auto convex = std::make_shared<fcl::Convexd>(
-        vertices, static_cast<int>(hull.triangles().size()), faces, /*throw_if_invalid=*/true);
+        vertices, static_cast<int>(faces->size() / 4), faces, /*throw_if_invalid=*/!flat);
     out = convex;
   }
   out->computeLocalAABB();

@@ -775,4 +775,36 @@ std::vector<HullPair> make_hull_pairs(std::uint64_t seed, int count, int vertice
   return pairs;
 }
 
+double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                               const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  return (closest_on_triangle(p, a, b, c) - p).norm();
+}
+
+HullDistance::HullDistance(const std::vector<Eigen::Vector3d>& points) : points_(points) {
+  const Polytope P = build_polytope(points_);
+  dim_ = P.dim;
+  eps_ = 1e-12 * (P.center.norm() + P.size);
+  if (dim_ == 3) {
+    tris_ = P.tris;
+    plane_n_ = P.plane_n;
+    plane_h_ = P.plane_h;
+  }
+}
+
+double HullDistance::operator()(const Eigen::Vector3d& p) const {
+  if (dim_ < 3) return brute_force_distance({p}, points_).distance;
+  bool inside = true;
+  for (std::size_t f = 0; f < plane_n_.size() && inside; ++f) {
+    inside = plane_n_[f].dot(p) <= plane_h_[f] + eps_;
+  }
+  if (inside) return 0.0;
+  double best = kInf;
+  for (const auto& t : tris_) {
+    best = std::min(best, point_triangle_distance(p, points_[static_cast<std::size_t>(t[0])],
+                                                  points_[static_cast<std::size_t>(t[1])],
+                                                  points_[static_cast<std::size_t>(t[2])]));
+  }
+  return best;
+}
+
 }  // namespace hullcheck::oracle

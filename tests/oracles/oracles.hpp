@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -71,5 +72,27 @@ struct HullPair {
 /// difference per pair, O(vertices^2) points: ~3 ms at 64 vertices, ~0.3 s at 512.
 std::vector<HullPair> make_hull_pairs(std::uint64_t seed, int count, int vertices,
                                       double overlap_fraction = 0.3, double size = 1.0);
+
+/// Exact distance from `p` to the triangle (a, b, c) (Ericson 5.1.5; degenerate triangles by
+/// their edges).
+double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                               const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+/// Distance from points to the convex hull of a point set (0 inside), the hull built once with
+/// qhull: for a 3D hull, 0 when every facet plane has the point within 1e-12 x (size) inside,
+/// else the least distance to a facet triangle; flat and smaller sets by brute_force_distance.
+class HullDistance {
+ public:
+  explicit HullDistance(const std::vector<Eigen::Vector3d>& points);
+  double operator()(const Eigen::Vector3d& p) const;
+
+ private:
+  std::vector<Eigen::Vector3d> points_;
+  int dim_ = 0;
+  std::vector<std::array<int, 3>> tris_;
+  std::vector<Eigen::Vector3d> plane_n_;
+  std::vector<double> plane_h_;
+  double eps_ = 0.0;
+};
 
 }  // namespace hullcheck::oracle

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -50,5 +51,19 @@ struct MeshLimits {
 std::vector<Eigen::Vector3d> read_mesh_vertices(const std::string& path,
                                                 const Eigen::Vector3d& scale,
                                                 const MeshLimits& limits = {});
+
+/// A triangle mesh: vertices (m) and triangles as indices into them. Orientation is the file's;
+/// nothing requires the mesh to be closed or consistently oriented.
+struct TriangleMesh {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+/// The vertices of read_mesh_vertices (same order, same checks and errors) with the file's faces
+/// as triangles: a polygon of n >= 3 corners becomes a fan of n - 2 triangles from its first
+/// corner; point and line faces add no triangle. A mirroring scale (an odd number of negative
+/// components) reverses each triangle's corner order, so that orientation is kept.
+TriangleMesh read_mesh(const std::string& path, const Eigen::Vector3d& scale,
+                       const MeshLimits& limits = {});
 
 }  // namespace hullcheck

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <hullcheck/robot/convex_decomposition.hpp>
 #include <hullcheck/robot/mesh_file.hpp>
 #include <hullcheck/robot/resource_path.hpp>
 #include <hullcheck/shape.hpp>
@@ -53,12 +54,13 @@ struct Joint {
   }
 };
 
-/// One collision element of a link, as a convex shape.
+/// One convex shape of a link: a URDF <collision> element, or one convex piece of a mesh
+/// element (RobotLoadOptions::mesh_geometry).
 struct CollisionShape {
   /// The shape with its padding applied (what queries use).
   Shape shape;
   /// The shape without padding (box, sphere, cylinder exactly; a mesh as the convex hull of
-  /// its vertices after URDF scale; a non-convex mesh is represented by its hull).
+  /// its vertices after URDF scale, or of one piece of its decomposition).
   Shape unpadded;
   /// Link frame -> shape frame (URDF <collision><origin>).
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
@@ -69,6 +71,25 @@ struct CollisionShape {
   std::string source;
   /// Vertex count of the mesh file (0 for primitives); the hull's count is in `unpadded`.
   std::size_t mesh_vertex_count = 0;
+  /// Which <collision> element of the link this shape comes from (0-based, file order).
+  int element = 0;
+  /// This shape is piece `piece` of `piece_count` of that element (0 of 1 unless decomposed).
+  int piece = 0;
+  int piece_count = 1;
+  /// For a mesh: proven bound, m, on how far the element's shapes' surfaces reach beyond the
+  /// mesh's solid (the decomposition's bound; for a hull, the hull's own, when measured). 0
+  /// for primitives; -1 when not measured (MeshGeometry::kHull).
+  double mesh_excess = 0.0;
+};
+
+/// How a mesh <collision> element becomes convex shapes.
+enum class MeshGeometry {
+  /// One convex hull per mesh: exact for convex meshes, covers concave ones by their hull
+  /// (which can report collisions the mesh does not have).
+  kHull,
+  /// Convex pieces covering the mesh's solid, within RobotLoadOptions::decomposition.tolerance
+  /// of it (decompose_mesh); a mesh within tolerance of its hull stays one piece.
+  kDecompose,
 };
 
 /// One link: a rigid body with zero or more collision shapes.
@@ -90,6 +111,14 @@ struct RobotLoadOptions {
   std::map<std::string, double> link_padding;
   /// Size, count and memory limits for each collision mesh file (mesh_file.hpp).
   MeshLimits mesh_limits;
+  /// Meshes as convex pieces (default) or as one hull each.
+  MeshGeometry mesh_geometry = MeshGeometry::kDecompose;
+  /// Tolerance (m) and piece budget of the decomposition (convex_decomposition.hpp).
+  DecompositionOptions decomposition;
+  /// Folder of cached decompositions (decomposition_cache.hpp); empty: the default folder
+  /// default_decomposition_cache_dir(). Ignored when `use_decomposition_cache` is false.
+  std::string decomposition_cache_dir;
+  bool use_decomposition_cache = true;
 };
 
 /// A robot loaded from URDF: links, joints, collision shapes, and forward kinematics.

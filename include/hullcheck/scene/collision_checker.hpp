@@ -112,6 +112,15 @@ class CollisionChecker {
   struct SelfPair {
     int a, b;  // indices into shapes_
   };
+  struct SelfBlock {      // the self pairs of one link pair, self_pairs_[begin, end)
+    int link_a, link_b;   // indices into link_balls_
+    int begin, end;
+  };
+  struct LinkBall {                 // a ball enclosing every shape ball of one link
+    int link;                       // index into the model's links
+    Eigen::Vector3d center;         // link frame
+    double radius;
+  };
   struct EnvironmentPair {
     int shape;     // index into shapes_
     int obstacle;  // index into scene_.obstacles
@@ -164,7 +173,9 @@ class CollisionChecker {
   PlanningScene scene_;
   std::vector<RobotShape> shapes_;
   std::vector<ObstacleBox> boxes_;
-  std::vector<SelfPair> self_pairs_;
+  std::vector<SelfPair> self_pairs_;   // grouped by link pair
+  std::vector<SelfBlock> self_blocks_;
+  std::vector<LinkBall> link_balls_;  // links with geometry
   std::vector<EnvironmentPair> environment_pairs_;  // grouped by block
   std::vector<ShapeGroup> groups_;
   std::vector<EnvironmentBlock> blocks_;
