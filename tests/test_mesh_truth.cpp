@@ -28,6 +28,7 @@
 
 #include "fcl_mesh_checker.hpp"
 #include "fcl_mesh_model.hpp"
+#include "mesh_test_support.hpp"
 #include "scene_test_support.hpp"
 
 namespace hullcheck {
@@ -222,15 +223,6 @@ struct MbmAgreement {
 };
 
 constexpr std::size_t kExamples = 5;
-
-// The meshes of a URDF, read once per test binary (BVH construction takes a moment).
-std::shared_ptr<const test::FclMeshModel> cached_meshes(const std::string& urdf,
-                                                        const PackageMap& packages) {
-  static std::map<std::string, std::shared_ptr<const test::FclMeshModel>> cache;
-  auto& entry = cache[urdf];
-  if (!entry) entry = std::make_shared<const test::FclMeshModel>(urdf, packages);
-  return entry;
-}
 
 // "a / b" of a hullcheck clearance result.
 std::string pair_of(const ClearanceResult& c) {
@@ -482,7 +474,7 @@ MbmAgreement check_mbm_states(const test::MbmRobot& robot, const RobotLoadOption
       AllowedCollisionMatrix::from_srdf(*model, read_srdf_file(robot.srdf));
   const AllowedCollisionMatrix none = allow_all(*model);
   SelfCheckers self_checkers(model, matrix);
-  const auto meshes = cached_meshes(robot.urdf, options.packages);
+  const auto meshes = test::cached_meshes(robot.urdf, options.packages);
   a.load_seconds = seconds_since(t0);
   const int per_family = test::sample_count(100, "HULLCHECK_MESH_TRUTH_PROBLEMS");
   std::vector<Eigen::Isometry3d> poses;

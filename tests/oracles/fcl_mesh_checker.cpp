@@ -263,6 +263,12 @@ FclMeshDistance FclMeshChecker::min_distance(double cutoff) const {
   return m.min_distance(std::move(order), cutoff);
 }
 
+double FclMeshChecker::pair_distance(std::size_t i) const {
+  const FclMeshPair& p = impl_->pairs.at(i);
+  if (impl_->collides(p)) return 0.0;
+  return impl_->distance_below(p, std::numeric_limits<double>::max());
+}
+
 FclMeshDistance FclMeshChecker::named_pair_distance(const std::string& a,
                                                     const std::string& b) const {
   const Impl& m = *impl_;

@@ -91,6 +91,9 @@ class FclMeshChecker {
   /// growing from 1 cm (x8 per pass, up to `cutoff`), each call seeded with the best so far.
   /// With `cutoff` <= 0 no distance is computed (a collision test only).
   FclMeshDistance min_distance(double cutoff = std::numeric_limits<double>::infinity()) const;
+  /// fcl::collide, then (when apart) fcl::distance on pair `i` alone, with no cull and no
+  /// seed: the reference that min_distance's culls and seeds must not change. 0 on contact.
+  double pair_distance(std::size_t i) const;
   /// min_distance over the pairs between link `a` and link or obstacle `b` (names, either
   /// order) only; distance +inf when no such pair is checked.
   FclMeshDistance named_pair_distance(const std::string& a, const std::string& b) const;
