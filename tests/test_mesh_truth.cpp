@@ -209,6 +209,10 @@ struct MbmAgreement {
   int problems_mesh_colliding = 0;
   int accepted_colliding = 0;  // hullcheck accepts, the meshes collide: never allowed
   int rejected_beyond = 0;     // hullcheck rejects, the meshes are apart by >= the tolerance
+  // hullcheck rejects, its deepest pair's meshes are apart by >= the tolerance (a state whose
+  // gripper is millimetres from its grasp target has a small state distance, whichever pair
+  // hullcheck rejects it for: this count looks at that pair only).
+  int rejected_pair_beyond = 0;
   // FCL mesh distances of the states hullcheck rejects whose meshes do not collide (sorted).
   std::vector<double> rejected_free_distances;
   // hullcheck's deepest pair in those states -> the meshes' distance for that pair in each.
@@ -241,15 +245,15 @@ std::string pair_counts(const std::map<std::string, int>& counts) {
   return out.empty() ? "none" : out;
 }
 
-// "min x mm, median y mm, within 1/3/6/10/20 mm: a/b/c/d/e" of sorted distances (m).
+// "min x mm, median y mm, max z mm, within 1/2/3/6/10/20 mm: a/b/c/d/e/f" of sorted distances (m).
 std::string distance_summary(const std::vector<double>& d) {
   if (d.empty()) return "none";
   std::ostringstream out;
   out.precision(3);
-  out << "min " << d.front() * 1e3 << " mm, median " << d[d.size() / 2] * 1e3
-      << " mm, within 1/3/6/10/20 mm:";
+  out << "min " << d.front() * 1e3 << " mm, median " << d[d.size() / 2] * 1e3 << " mm, max "
+      << d.back() * 1e3 << " mm, within 1/2/3/6/10/20 mm:";
   const char* separator = " ";
-  for (const double x : {1e-3, 3e-3, 6e-3, 1e-2, 2e-2}) {
+  for (const double x : {1e-3, 2e-3, 3e-3, 6e-3, 1e-2, 2e-2}) {
     out << separator << std::upper_bound(d.begin(), d.end(), x) - d.begin();
     separator = "/";
   }
@@ -293,7 +297,8 @@ void report(const MbmAgreement& a) {
             << a.hull_invalid << " (problems: " << a.problems_hull_invalid << ")\n"
             << "  accepted but the meshes collide: " << a.accepted_colliding
             << "; rejected but the meshes are apart by at least the tolerance: "
-            << a.rejected_beyond << "\n"
+            << a.rejected_beyond
+            << " (by its deepest pair's mesh distance: " << a.rejected_pair_beyond << ")\n"
             << "  rejected, meshes free: " << a.rejected_free_distances.size()
             << "; the state's mesh distance: " << distance_summary(a.rejected_free_distances)
             << "\n"
@@ -317,6 +322,7 @@ void report(const MbmAgreement& a) {
   testing::Test::RecordProperty(p + "rejected_free",
                                 static_cast<int>(a.rejected_free_distances.size()));
   testing::Test::RecordProperty(p + "rejected_beyond_tolerance", a.rejected_beyond);
+  testing::Test::RecordProperty(p + "rejected_pair_beyond_tolerance", a.rejected_pair_beyond);
   if (!a.rejected_free_distances.empty()) {
     testing::Test::RecordProperty(
         p + "min_rejected_free_distance_um",
@@ -449,6 +455,7 @@ std::pair<bool, bool> compare_state(const SceneChecker& checker, test::FclMeshCh
     if (!valid && !d.collision) {
       a->rejected_free_distances.push_back(d.distance);
       a->rejected_free_pairs[pair_of(c)].push_back(same);
+      a->rejected_pair_beyond += same >= a->tolerance ? 1 : 0;
     }
     if (example) {
       examples.push_back({problem, state, pair_of(c), c.distance, same, mesh_pair, d.distance});
