@@ -522,8 +522,7 @@ void expect_covers_meshes(const MbmAgreement& a) {
 
 // Full agreement beyond the tolerance: also no state rejected whose meshes are apart by at
 // least it (for pieces within t of the meshes: t for link/obstacle pairs, 2t for self pairs).
-// Unused while links are hulls (they over-report); for representations that follow the meshes.
-[[maybe_unused]] void expect_agrees_beyond_tolerance(const MbmAgreement& a) {
+void expect_agrees_beyond_tolerance(const MbmAgreement& a) {
   expect_covers_meshes(a);
   EXPECT_EQ(a.rejected_beyond, 0) << a.robot << ": rejected states with meshes apart by at least "
                                   << a.tolerance << " m";
@@ -535,14 +534,18 @@ TEST(MeshTruth, MbmStartAndGoalStates) {
   if (robots.empty()) GTEST_SKIP() << "MotionBenchMaker data (../shared) absent";
   for (const test::MbmRobot& robot : robots) {
     SCOPED_TRACE(robot.id);
-    // Convex hulls (today's representation): they cover the meshes, and over-report.
-    const MbmAgreement hulls = check_mbm_states(robot, RobotLoadOptions{}, 0.0);
+    // One convex hull per mesh: covers the meshes, and over-reports (the UR5's forearm).
+    const MbmAgreement hulls = check_mbm_states(robot, test::hull_options(), 0.0);
     expect_covers_meshes(hulls);
     // MotionBenchMaker's start and goal states are valid for MoveIt, i.e. for FCL on these
     // meshes: the oracle must agree.
     EXPECT_EQ(hulls.mesh_colliding, 0);
-    // A representation that follows the meshes within a tolerance adds one line here, e.g.
-    // expect_agrees_beyond_tolerance(check_mbm_states(robot, options, 0.006)).
+    // Convex pieces (the default) within t of the meshes: they cover the meshes, and agree
+    // with them wherever the meshes are apart by 2t (a self pair's two links each reach up to
+    // t beyond their meshes).
+    const RobotLoadOptions pieces;
+    expect_agrees_beyond_tolerance(
+        check_mbm_states(robot, pieces, 2.0 * pieces.decomposition.tolerance));
   }
 }
 
