@@ -133,6 +133,7 @@ struct MeshKey {
 // A mesh file's convex shapes (one hull, or the pieces of its decomposition).
 struct MeshShapes {
   std::vector<ConvexHull> hulls;
+  std::shared_ptr<const ConvexHull> hull_of_pieces;  // when there are several
   std::size_t vertex_count;
   double excess;  // CollisionShape::mesh_excess
 };
@@ -193,6 +194,7 @@ class Loader {
           out.mesh_excess = mesh.excess;
           out.source = path;
           out.piece_count = static_cast<int>(mesh.hulls.size());
+          out.element_hull_unpadded = mesh.hull_of_pieces;
           std::vector<CollisionShape> pieces;
           for (std::size_t k = 0; k < mesh.hulls.size(); ++k) {
             out.unpadded = mesh.hulls[k];
@@ -223,7 +225,7 @@ class Loader {
     auto it = meshes_.find(key);
     if (it != meshes_.end()) return it->second;
     const std::string what = where + ": mesh '" + path + "' (after <mesh scale>)";
-    MeshShapes shapes{{}, 0, -1.0};
+    MeshShapes shapes{{}, nullptr, 0, -1.0};
     if (options_.mesh_geometry == MeshGeometry::kHull) {
       const std::vector<Eigen::Vector3d> vertices =
           read_mesh_vertices(path, scale, options_.mesh_limits);
@@ -244,6 +246,13 @@ class Loader {
       }
       shapes.vertex_count = d.vertex_count;
       shapes.excess = d.decomposition.bound;
+      if (shapes.hulls.size() > 1) {
+        std::vector<Eigen::Vector3d> all;
+        for (const ConvexHull& h : shapes.hulls) {
+          all.insert(all.end(), h.vertices().begin(), h.vertices().end());
+        }
+        shapes.hull_of_pieces = std::make_shared<const ConvexHull>(distinct_points(all));
+      }
     }
     return meshes_.emplace(key, std::move(shapes)).first->second;
   }
@@ -528,6 +537,11 @@ void RobotModel::apply_padding() {
     link.padding = it == link_padding_.end() ? default_padding_ : it->second;
     for (CollisionShape& s : link.shapes) {
       s.shape = link.padding > 0.0 ? s.unpadded.inflated(link.padding) : s.unpadded;
+      if (s.element_hull_unpadded) {
+        const Shape hull(*s.element_hull_unpadded);
+        s.element_hull =
+            std::make_shared<const Shape>(link.padding > 0.0 ? hull.inflated(link.padding) : hull);
+      }
       if (s.unpadded.kind() == ShapeKind::kConvexHull) {
         const auto& data = std::get<ConvexHull>(s.unpadded.geometry()).data();
         s.bounding_center = data.center;

@@ -56,6 +56,15 @@ void slab_bounds(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b
   *upper = (b_min - a_max).norm();
 }
 
+// Queue codes of nearest_pair's blocks (negative; pairs are 2 * pair + refined, >= 0): block
+// `index` (self blocks first, then obstacle blocks), refined once its bounding shapes'
+// distance is in.
+int block_code(std::size_t index, bool refined) {
+  return -1 - (2 * static_cast<int>(index) + (refined ? 1 : 0));
+}
+std::size_t block_index(int code) { return static_cast<std::size_t>((-1 - code) / 2); }
+bool block_refined(int code) { return (-1 - code) % 2 == 1; }
+
 }  // namespace
 
 struct CollisionChecker::Scratch {
@@ -70,14 +79,19 @@ struct CollisionChecker::Scratch {
   // belongs to the current query (stamp grows with every place(), so no stale pose is used,
   // whichever checker ran before on this thread).
   std::vector<std::uint64_t> posed;
+  std::vector<std::uint64_t> centered;  // centers[i] is current when centered[i] == stamp
   std::uint64_t stamp = 0;
   const std::vector<Eigen::Isometry3d>* link_poses_in = nullptr;  // of the current query
   const double* q = nullptr;  // configuration of the current query, when it has one
   std::vector<Eigen::Vector3d> group_centers;
   std::vector<double> group_radii;
   std::vector<Eigen::Vector3d> link_centers;  // per link_balls_ entry, model frame
+  // is_valid: per shape, the stamp of the query and self block for which it was found to meet
+  // the other link's hull (pieces that do not cannot meet any of that link's pieces).
+  std::vector<std::uint64_t> meets_other;
   std::vector<std::pair<double, int>> candidates;  // clearance: queue of (lower bound, code)
   std::vector<std::pair<double, int>> nearest;     // clearance: (ball bound, code)
+  std::vector<std::pair<double, int>> expanded;    // clearance: a block's pairs
 };
 
 CollisionChecker::Scratch& CollisionChecker::scratch() const {
@@ -90,6 +104,8 @@ CollisionChecker::Scratch& CollisionChecker::scratch() const {
     s.shape_poses.resize(shapes_.size());
     s.centers.resize(shapes_.size());
     s.posed.resize(shapes_.size(), 0);
+    s.centered.resize(shapes_.size(), 0);
+    s.meets_other.resize(shapes_.size(), 0);
   }
   if (s.group_centers.size() < groups_.size()) {
     s.group_centers.resize(groups_.size());
@@ -101,6 +117,7 @@ CollisionChecker::Scratch& CollisionChecker::scratch() const {
     s.lower_bounds.resize(pairs);
     s.candidates.reserve(pairs);
     s.nearest.reserve(pairs);
+    s.expanded.reserve(pairs);
   }
   return s;
 }
@@ -153,6 +170,7 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
     }
   }
   first_shape[static_cast<std::size_t>(n)] = static_cast<int>(shapes_.size());
+  shape_begin_ = first_shape;
   // Pairs of links with geometry only: quadratic in those, not in all links. A link's ball
   // encloses its shapes' balls (about the middle of their centres' bounding box): a link pair
   // whose balls are apart needs none of its shape pairs (decomposed links have many).
@@ -197,25 +215,62 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
     local_box(o.shape, &center, &half);
     boxes_.push_back({o.pose.linear().transpose(), o.pose * center, half});
   }
-  // Groups of whole links, up to kGroupSize shapes; a link with more shapes (a decomposed mesh)
-  // is a group of its own.
+  // Groups of whole links, up to kGroupSize shapes; the pieces of a decomposed mesh are a group
+  // of their own, bounded by the mesh's hull.
   {
-    int begin = 0, end = 0;
-    for (int l = 0; l < n; ++l) {
-      const int size = first_shape[static_cast<std::size_t>(l) + 1] -
-                       first_shape[static_cast<std::size_t>(l)];
-      if (size == 0) continue;
-      if (end > begin && end - begin + size > kGroupSize) {
-        groups_.push_back({begin, end});
-        begin = end;
+    const auto piece_of = [&](int sh) -> const CollisionShape& {
+      const RobotShape& rs = shapes_[static_cast<std::size_t>(sh)];
+      return model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)];
+    };
+    int begin = 0;
+    for (int sh = 0; sh < static_cast<int>(shapes_.size());) {
+      const CollisionShape& cs = piece_of(sh);
+      if (cs.element_hull) {  // a decomposed mesh's pieces, consecutive
+        if (sh > begin) groups_.push_back({begin, sh});
+        groups_.push_back({sh, sh + cs.piece_count, sh});
+        sh += cs.piece_count;
+        begin = sh;
+        continue;
       }
-      end += size;
-      if (size > kGroupSize) {
-        groups_.push_back({begin, end});
-        begin = end;
+      const int link = shapes_[static_cast<std::size_t>(sh)].link;
+      const int link_end = first_shape[static_cast<std::size_t>(link) + 1];
+      bool decomposed = false;  // does the rest of this link hold a decomposed mesh?
+      for (int k = sh; k < link_end; ++k) decomposed = decomposed || piece_of(k).element_hull;
+      const int stop = decomposed ? sh + 1 : link_end;  // whole links when possible
+      if (sh > begin && stop - begin > kGroupSize) {
+        groups_.push_back({begin, sh});
+        begin = sh;
       }
+      sh = stop;
     }
-    if (end > begin) groups_.push_back({begin, end});
+    if (static_cast<int>(shapes_.size()) > begin) {
+      groups_.push_back({begin, static_cast<int>(shapes_.size())});
+    }
+  }
+  for (ShapeGroup& group : groups_) {  // one link's group: a ball fixed in the link's frame
+    const int link = shapes_[static_cast<std::size_t>(group.begin)].link;
+    if (shapes_[static_cast<std::size_t>(group.end - 1)].link != link) continue;
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d hi = -lo;
+    for (int sh = group.begin; sh < group.end; ++sh) {
+      lo = lo.cwiseMin(shapes_[static_cast<std::size_t>(sh)].center);
+      hi = hi.cwiseMax(shapes_[static_cast<std::size_t>(sh)].center);
+    }
+    group.link = link;
+    group.local_center = 0.5 * (lo + hi);
+    group.radius = 0.0;
+    for (int sh = group.begin; sh < group.end; ++sh) {
+      const RobotShape& rs = shapes_[static_cast<std::size_t>(sh)];
+      group.radius = std::max(group.radius, (rs.center - group.local_center).norm() + rs.radius);
+    }
+  }
+  for (LinkBall& ball : link_balls_) {
+    const int begin = first_shape[static_cast<std::size_t>(ball.link)];
+    const int end = first_shape[static_cast<std::size_t>(ball.link) + 1];
+    const CollisionShape& first = model_->link(ball.link).shapes.front();
+    if (end - begin == 1 || (first.element_hull && first.piece_count == end - begin)) {
+      ball.bound = begin;
+    }
   }
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     for (int o = 0; o < static_cast<int>(scene_.obstacles.size()); ++o) {
@@ -310,28 +365,41 @@ void CollisionChecker::place(const std::vector<Eigen::Isometry3d>& link_poses, S
   s.link_poses_in = &link_poses;
   s.q = nullptr;
   ++s.stamp;
-  for (std::size_t i = 0; i < shapes_.size(); ++i) {
-    const RobotShape& rs = shapes_[i];
-    s.centers[i] = link_poses[static_cast<std::size_t>(rs.link)] * rs.center;
-  }
+  // Shape ball centres are computed when a test needs them (center()); a decomposed mesh's
+  // pieces are many, and most queries never look at them.
   for (std::size_t i = 0; i < link_balls_.size(); ++i) {
     s.link_centers[i] =
         link_poses[static_cast<std::size_t>(link_balls_[i].link)] * link_balls_[i].center;
   }
-  // Group balls: around the mean of the members' centres, enclosing every member's ball.
+  // Group balls: one link's group has a fixed ball in that link's frame; a group of several
+  // links gets one around the mean of its members' centres, enclosing every member's ball.
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     const ShapeGroup& group = groups_[g];
-    Eigen::Vector3d center = Eigen::Vector3d::Zero();
-    for (int i = group.begin; i < group.end; ++i) center += s.centers[static_cast<std::size_t>(i)];
-    center /= static_cast<double>(group.end - group.begin);
+    if (group.link >= 0) {
+      s.group_centers[g] = link_poses[static_cast<std::size_t>(group.link)] * group.local_center;
+      s.group_radii[g] = group.radius;
+      continue;
+    }
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int i = group.begin; i < group.end; ++i) c += center(i, s);
+    c /= static_cast<double>(group.end - group.begin);
     double radius = 0.0;
     for (int i = group.begin; i < group.end; ++i) {
-      radius = std::max(radius, (s.centers[static_cast<std::size_t>(i)] - center).norm() +
-                                    shapes_[static_cast<std::size_t>(i)].radius);
+      radius = std::max(radius,
+                        (center(i, s) - c).norm() + shapes_[static_cast<std::size_t>(i)].radius);
     }
-    s.group_centers[g] = center;
+    s.group_centers[g] = c;
     s.group_radii[g] = radius;
   }
+}
+
+const Eigen::Vector3d& CollisionChecker::center(int shape, Scratch& s) const {
+  const auto i = static_cast<std::size_t>(shape);
+  if (s.centered[i] != s.stamp) {
+    s.centered[i] = s.stamp;
+    s.centers[i] = (*s.link_poses_in)[static_cast<std::size_t>(shapes_[i].link)] * shapes_[i].center;
+  }
+  return s.centers[i];
 }
 
 const Eigen::Isometry3d& CollisionChecker::shape_pose(int shape, Scratch& s) const {
@@ -373,6 +441,12 @@ double CollisionChecker::box_gap(const ObstacleBox& box, const Eigen::Vector3d& 
   return (outside > 0.0 ? outside : excess.maxCoeff()) - radius;
 }
 
+const Shape& CollisionChecker::bounding_shape(int shape) const {
+  const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
+  const CollisionShape& cs = model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)];
+  return cs.element_hull ? *cs.element_hull : cs.shape;
+}
+
 bool CollisionChecker::is_valid(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   model_->check_configuration(q);
   Scratch& s = scratch();
@@ -393,10 +467,16 @@ bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_po
     const ObstacleBox& box = boxes_[static_cast<std::size_t>(block.obstacle)];
     const auto g = static_cast<std::size_t>(block.group);
     if (block.end - block.begin > 1 && clear(box, s.group_centers[g], s.group_radii[g])) continue;
+    const int bound = groups_[g].bound;
+    if (bound >= 0 && block.end - block.begin > 1) {
+      // A decomposed mesh: its hull first (it contains every piece; one query, not one each).
+      const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(block.obstacle)];
+      if (!intersect(bounding_shape(bound), shape_pose(bound, s), o.shape, o.pose)) continue;
+    }
     for (int i = block.begin; i < block.end; ++i) {
       const int shape = environment_pairs_[static_cast<std::size_t>(i)].shape;
       const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
-      if (clear(box, s.centers[static_cast<std::size_t>(shape)], rs.radius)) continue;
+      if (clear(box, center(shape, s), rs.radius)) continue;
       const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(block.obstacle)];
       if (intersect(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
                     shape_pose(shape, s), o.shape, o.pose)) {
@@ -413,13 +493,65 @@ bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_po
               .squaredNorm() > reach * reach) {
         continue;
       }
+      // Links that are one shape or one decomposed mesh: their hulls first.
+      const int bound_a = link_balls_[static_cast<std::size_t>(block.link_a)].bound;
+      const int bound_b = link_balls_[static_cast<std::size_t>(block.link_b)].bound;
+      if (bound_a >= 0 && bound_b >= 0) {
+        const Shape& hull_a = bounding_shape(bound_a);
+        const Shape& hull_b = bounding_shape(bound_b);
+        const Eigen::Isometry3d& pose_a = shape_pose(bound_a, s);
+        const Eigen::Isometry3d& pose_b = shape_pose(bound_b, s);
+        if (!intersect(hull_a, pose_a, hull_b, pose_b)) continue;
+        if (block.end - block.begin > kGroupSize) {
+          // Many piece pairs: each piece against the other link's hull first; only pieces
+          // meeting it can meet a piece of that link. A mark is this query and block's stamp.
+          const std::uint64_t mark = (s.stamp << 20) + static_cast<std::uint64_t>(&block - self_blocks_.data()) + 1;
+          bool any_a = false, any_b = false;
+          const auto mark_pieces = [&](int link_ball, const Shape& other, const Eigen::Isometry3d& other_pose,
+                                       bool* any) {
+            const int l = link_balls_[static_cast<std::size_t>(link_ball)].link;
+            const int begin = shape_begin_[static_cast<std::size_t>(l)];
+            const int end = shape_begin_[static_cast<std::size_t>(l) + 1];
+            for (int sh = begin; sh < end; ++sh) {
+              const RobotShape& rs = shapes_[static_cast<std::size_t>(sh)];
+              if (intersect(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
+                            shape_pose(sh, s), other, other_pose)) {
+                s.meets_other[static_cast<std::size_t>(sh)] = mark;
+                *any = true;
+              }
+            }
+          };
+          mark_pieces(block.link_a, hull_b, pose_b, &any_a);
+          if (!any_a) continue;
+          mark_pieces(block.link_b, hull_a, pose_a, &any_b);
+          if (!any_b) continue;
+          for (int k = block.begin; k < block.end; ++k) {
+            const SelfPair& p = self_pairs_[static_cast<std::size_t>(k)];
+            if (s.meets_other[static_cast<std::size_t>(p.a)] != mark ||
+                s.meets_other[static_cast<std::size_t>(p.b)] != mark) {
+              continue;
+            }
+            if (intersect(model_->link(shapes_[static_cast<std::size_t>(p.a)].link)
+                              .shapes[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(p.a)].shape)]
+                              .shape,
+                          shape_pose(p.a, s),
+                          model_->link(shapes_[static_cast<std::size_t>(p.b)].link)
+                              .shapes[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(p.b)].shape)]
+                              .shape,
+                          shape_pose(p.b, s))) {
+              return false;
+            }
+          }
+          continue;
+        }
+      }
     }
     for (int k = block.begin; k < block.end; ++k) {
       const SelfPair& p = self_pairs_[static_cast<std::size_t>(k)];
       const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
       const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
       const double reach = a.radius + b.radius;
-      if ((s.centers[static_cast<std::size_t>(p.a)] - s.centers[static_cast<std::size_t>(p.b)])
+      if ((center(p.a, s) - center(p.b, s))
               .squaredNorm() > reach * reach) {
         continue;
       }
@@ -502,7 +634,7 @@ ClearanceResult CollisionChecker::nearest_pair(Scratch& s) const {
       const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
       Eigen::Vector3d towards_shape;
       box_gap(boxes_[static_cast<std::size_t>(p.obstacle)],
-              s.centers[static_cast<std::size_t>(p.shape)], rs.radius, &towards_shape);
+              center(p.shape, s), rs.radius, &towards_shape);
       slab_bounds(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
                   shape_pose(p.shape, s), o.shape, o.pose, -towards_shape, &slab, &upper);
     } else {
@@ -519,7 +651,7 @@ ClearanceResult CollisionChecker::nearest_pair(Scratch& s) const {
         n = -(pose_a.linear() * *direction).normalized();
       } else {  // the balls' direction
         const Eigen::Vector3d ab =
-            s.centers[static_cast<std::size_t>(p.b)] - s.centers[static_cast<std::size_t>(p.a)];
+            center(p.b, s) - center(p.a, s);
         const double centres = ab.norm();
         if (!(centres > 0.0)) return ball;  // concentric balls: no direction, no slab
         n = ab / centres;
@@ -531,22 +663,56 @@ ClearanceResult CollisionChecker::nearest_pair(Scratch& s) const {
     cut = std::min(cut, upper);
     return std::max(ball, slab);
   };
-  // Ball bounds of the self pairs; the nearest is refined at once: its slab sets a first cut
-  // that culls most obstacle pairs (on arms the closest pair is often a self pair).
+  // Ball bounds of the self pairs, a link pair with several shape pairs (decomposed meshes) as
+  // one entry bounded by the links' balls (a block code, negative), expanded into its pairs
+  // when it comes first. A block of an obstacle and a decomposed mesh's pieces likewise. Block
+  // entries come first with their ball bound, then (when both sides have one bounding shape)
+  // with the distance between the bounding shapes, a lower bound for every pair inside. The nearest pair is refined at once: its slab sets a first cut that culls most
+  // obstacle pairs (on arms the closest pair is often a self pair).
   s.nearest.clear();
-  for (std::size_t k = 0; k < self_pairs_.size(); ++k) {
+  const auto pair_ball = [&](std::size_t k) {
     const SelfPair& p = self_pairs_[k];
-    s.nearest.emplace_back(
-        (s.centers[static_cast<std::size_t>(p.b)] - s.centers[static_cast<std::size_t>(p.a)])
-                .norm() -
-            shapes_[static_cast<std::size_t>(p.a)].radius -
-            shapes_[static_cast<std::size_t>(p.b)].radius,
-        2 * static_cast<int>(n_env + k));
+    return (center(p.b, s) - center(p.a, s))
+               .norm() -
+           shapes_[static_cast<std::size_t>(p.a)].radius -
+           shapes_[static_cast<std::size_t>(p.b)].radius;
+  };
+  const auto push_pairs = [&](const SelfBlock& block, std::vector<std::pair<double, int>>* to) {
+    for (int k = block.begin; k < block.end; ++k) {
+      to->emplace_back(pair_ball(static_cast<std::size_t>(k)), 2 * static_cast<int>(n_env) + 2 * k);
+    }
+  };
+  for (std::size_t b = 0; b < self_blocks_.size(); ++b) {
+    const SelfBlock& block = self_blocks_[b];
+    if (block.end - block.begin <= kGroupSize) {
+      push_pairs(block, &s.nearest);
+      continue;
+    }
+    const LinkBall& la = link_balls_[static_cast<std::size_t>(block.link_a)];
+    const LinkBall& lb = link_balls_[static_cast<std::size_t>(block.link_b)];
+    s.nearest.emplace_back((s.link_centers[static_cast<std::size_t>(block.link_a)] -
+                            s.link_centers[static_cast<std::size_t>(block.link_b)])
+                                   .norm() -
+                               la.radius - lb.radius,
+                           block_code(b, false));
+  }
+  if (!s.nearest.empty()) {  // the nearest entry a block: its pairs instead
+    const auto it = std::min_element(s.nearest.begin(), s.nearest.end());
+    if (it->second < 0) {
+      const SelfBlock& block = self_blocks_[block_index(it->second)];
+      *it = s.nearest.back();
+      s.nearest.pop_back();
+      push_pairs(block, &s.nearest);
+    }
   }
   const auto refine_nearest = [&](std::size_t from) {
     if (s.nearest.size() <= from) return;
-    const auto it =
-        std::min_element(s.nearest.begin() + static_cast<std::ptrdiff_t>(from), s.nearest.end());
+    const auto it = std::min_element(
+        s.nearest.begin() + static_cast<std::ptrdiff_t>(from), s.nearest.end(),
+        [](const auto& x, const auto& y) {  // pairs only (blocks have negative codes)
+          return (x.second >= 0) != (y.second >= 0) ? x.second >= 0 : x < y;
+        });
+    if (it->second < 0) return;
     it->first = refine(static_cast<std::size_t>(it->second / 2), it->first);
     it->second |= 1;
   };
@@ -566,6 +732,19 @@ ClearanceResult CollisionChecker::nearest_pair(Scratch& s) const {
     }
     return *gap < cut_now;
   };
+  // The pairs of an obstacle block with their ball bounds below the cut.
+  const auto push_environment_pairs = [&](const EnvironmentBlock& block,
+                                          std::vector<std::pair<double, int>>* to) {
+    const ObstacleBox& box = boxes_[static_cast<std::size_t>(block.obstacle)];
+    double ball = 0.0;
+    for (int i = block.begin; i < block.end; ++i) {
+      const int shape = environment_pairs_[static_cast<std::size_t>(i)].shape;
+      if (ball_below_cut(box, center(shape, s), shapes_[static_cast<std::size_t>(shape)].radius,
+                         cut, &ball)) {
+        to->emplace_back(ball, 2 * i);
+      }
+    }
+  };
   const std::size_t environment_begin = s.nearest.size();
   for (const EnvironmentBlock& block : blocks_) {
     const ObstacleBox& box = boxes_[static_cast<std::size_t>(block.obstacle)];
@@ -575,13 +754,13 @@ ClearanceResult CollisionChecker::nearest_pair(Scratch& s) const {
         !ball_below_cut(box, s.group_centers[g], s.group_radii[g], cut, &ball)) {
       continue;
     }
-    for (int i = block.begin; i < block.end; ++i) {
-      const int shape = environment_pairs_[static_cast<std::size_t>(i)].shape;
-      if (ball_below_cut(box, s.centers[static_cast<std::size_t>(shape)],
-                         shapes_[static_cast<std::size_t>(shape)].radius, cut, &ball)) {
-        s.nearest.emplace_back(ball, 2 * i);
-      }
+    if (groups_[g].bound >= 0 && block.end - block.begin > kGroupSize) {
+      s.nearest.emplace_back(
+          ball, block_code(self_blocks_.size() + static_cast<std::size_t>(&block - blocks_.data()),
+                           false));
+      continue;
     }
+    push_environment_pairs(block, &s.nearest);
   }
   refine_nearest(environment_begin);  // the nearest obstacle pair tightens the cut in turn
   // The queue: a binary heap, smallest bound on top (ties by pair: deterministic).
@@ -638,6 +817,59 @@ ClearanceResult CollisionChecker::nearest_pair(Scratch& s) const {
     // Strictly above the cut: the pair that set the cut has a bound at most the cut and is
     // still queued or evaluated.
     if (bound >= best.distance || bound > cut) break;
+    if (code < 0) {
+      const std::size_t index = block_index(code);
+      const bool self_block = index < self_blocks_.size();
+      if (!block_refined(code)) {
+        // The bounding shapes' distance: a lower bound for every pair of the block (each
+        // side's shapes lie in its bounding shape). Overlapping bounds bound nothing: expand.
+        int bound_a = -1, bound_b = -1;
+        const Shape* shape_b = nullptr;
+        const Eigen::Isometry3d* pose_b = nullptr;
+        if (self_block) {
+          const SelfBlock& block = self_blocks_[index];
+          bound_a = link_balls_[static_cast<std::size_t>(block.link_a)].bound;
+          bound_b = link_balls_[static_cast<std::size_t>(block.link_b)].bound;
+          if (bound_b >= 0) {
+            shape_b = &bounding_shape(bound_b);
+            pose_b = &shape_pose(bound_b, s);
+          }
+        } else {
+          const EnvironmentBlock& block = blocks_[index - self_blocks_.size()];
+          bound_a = groups_[static_cast<std::size_t>(block.group)].bound;
+          const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(block.obstacle)];
+          shape_b = &o.shape;
+          pose_b = &o.pose;
+        }
+        if (bound_a >= 0 && shape_b != nullptr) {
+          ++best.exact_queries;
+          const DistanceResult d =
+              distance(bounding_shape(bound_a), shape_pose(bound_a, s), *shape_b, *pose_b);
+          best.iterations += d.iterations;
+          if (d.distance > 0.0) {
+            const double refined = std::max(bound, d.distance);
+            if (refined >= best.distance || refined > cut) continue;
+            queue.emplace_back(refined, block_code(index, true));
+            std::push_heap(queue.begin(), queue.end(), later);
+            continue;
+          }
+        }
+      }
+      // The block's pairs with their own ball bounds.
+      std::vector<std::pair<double, int>>& expanded = s.expanded;
+      expanded.clear();
+      if (self_block) {
+        push_pairs(self_blocks_[index], &expanded);
+      } else {
+        push_environment_pairs(blocks_[index - self_blocks_.size()], &expanded);
+      }
+      for (const auto& entry : expanded) {
+        if (entry.first >= best.distance || entry.first > cut) continue;
+        queue.push_back(entry);
+        std::push_heap(queue.begin(), queue.end(), later);
+      }
+      continue;
+    }
     const auto i = static_cast<std::size_t>(code / 2);
     if (code % 2 == 1) {
       evaluate(i);
@@ -686,12 +918,12 @@ double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q
     if (i < n_env) {
       const EnvironmentPair& p = environment_pairs_[i];
       lb = box_gap(boxes_[static_cast<std::size_t>(p.obstacle)],
-                   s.centers[static_cast<std::size_t>(p.shape)],
+                   center(p.shape, s),
                    shapes_[static_cast<std::size_t>(p.shape)].radius);
       motion = shape_levers_.row(p.shape).dot(abs_dq) + extra;
     } else {
       const SelfPair& p = self_pairs_[i - n_env];
-      lb = (s.centers[static_cast<std::size_t>(p.a)] - s.centers[static_cast<std::size_t>(p.b)])
+      lb = (center(p.a, s) - center(p.b, s))
                .norm() -
            shapes_[static_cast<std::size_t>(p.a)].radius -
            shapes_[static_cast<std::size_t>(p.b)].radius;

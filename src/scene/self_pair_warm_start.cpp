@@ -37,6 +37,12 @@ void CollisionChecker::build_warm_start_grids(const std::vector<std::vector<bool
   for (std::size_t k = 0; k < self_pairs_.size(); ++k) {
     const RobotShape& a = shapes_[static_cast<std::size_t>(self_pairs_[k].a)];
     const RobotShape& b = shapes_[static_cast<std::size_t>(self_pairs_[k].b)];
+    // Not for the pieces of decomposed meshes: their pairs are many, and the grids' cost is per
+    // pair (their clearance queries start cold).
+    if (model.link(a.link).shapes[static_cast<std::size_t>(a.shape)].piece_count > 1 ||
+        model.link(b.link).shapes[static_cast<std::size_t>(b.shape)].piece_count > 1) {
+      continue;
+    }
     // The values that move one link relative to the other: drivers of the movable joints
     // above exactly one of them.
     std::vector<int> keys;

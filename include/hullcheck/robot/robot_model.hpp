@@ -76,6 +76,12 @@ struct CollisionShape {
   /// This shape is piece `piece` of `piece_count` of that element (0 of 1 unless decomposed).
   int piece = 0;
   int piece_count = 1;
+  /// For a piece of a decomposed mesh (piece_count > 1): the convex hull of all the element's
+  /// pieces (the mesh's hull), padded like `shape`; it contains every piece, so whatever is
+  /// clear of it is clear of all of them (the checker's first test). Null otherwise.
+  std::shared_ptr<const Shape> element_hull = nullptr;
+  /// The same without padding, shared by the element's pieces.
+  std::shared_ptr<const ConvexHull> element_hull_unpadded = nullptr;
   /// For a mesh: proven bound, m, on how far the element's shapes' surfaces reach beyond the
   /// mesh's solid (the decomposition's bound; for a hull, the hull's own, when measured). 0
   /// for primitives; -1 when not measured (MeshGeometry::kHull).

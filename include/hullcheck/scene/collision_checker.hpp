@@ -103,6 +103,13 @@ class CollisionChecker {
   };
   struct ShapeGroup {  // consecutive robot shapes, shapes_[begin, end), culled together
     int begin, end;
+    // The pieces of one decomposed mesh: shapes_[bound] is a piece whose element_hull (the
+    // mesh's hull, at the pieces' common pose) contains them all; -1 otherwise.
+    int bound = -1;
+    // All of one link's shapes: their enclosing ball, fixed in that link's frame; -1 otherwise.
+    int link = -1;
+    Eigen::Vector3d local_center = Eigen::Vector3d::Zero();
+    double radius = 0.0;
   };
   struct ObstacleBox {           // oriented bounding box of an obstacle (margin included)
     Eigen::Matrix3d rotation_t;  // world -> box frame rotation
@@ -120,7 +127,12 @@ class CollisionChecker {
     int link;                       // index into the model's links
     Eigen::Vector3d center;         // link frame
     double radius;
+    // A shape containing all of the link's shapes: shapes_[bound]'s element hull when the link
+    // is one decomposed mesh, shapes_[bound] itself when it is one shape; -1 otherwise.
+    int bound = -1;
   };
+  /// The shape containing robot shape `shape`'s group or link (see `bound` above).
+  const Shape& bounding_shape(int shape) const;
   struct EnvironmentPair {
     int shape;     // index into shapes_
     int obstacle;  // index into scene_.obstacles
@@ -156,6 +168,8 @@ class CollisionChecker {
   Scratch& scratch() const;
   void place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const;
   const Eigen::Isometry3d& shape_pose(int shape, Scratch& s) const;
+  /// Centre (model frame) of robot shape `shape`'s ball at the current query's poses.
+  const Eigen::Vector3d& center(int shape, Scratch& s) const;
   /// clearance() at the shapes placed by place().
   ClearanceResult nearest_pair(Scratch& s) const;
   /// signed_distance_below(cutoff) of checked pair i (environment pairs first, then self pairs)
@@ -176,6 +190,7 @@ class CollisionChecker {
   std::vector<SelfPair> self_pairs_;   // grouped by link pair
   std::vector<SelfBlock> self_blocks_;
   std::vector<LinkBall> link_balls_;  // links with geometry
+  std::vector<int> shape_begin_;      // per link (and one past): its first index in shapes_
   std::vector<EnvironmentPair> environment_pairs_;  // grouped by block
   std::vector<ShapeGroup> groups_;
   std::vector<EnvironmentBlock> blocks_;
