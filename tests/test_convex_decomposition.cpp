@@ -41,8 +41,8 @@ double l_distance(const Eigen::Vector3d& p) {
 
 // The L as a closed triangle mesh: its profile in the x-z plane extruded along y over [0, 0.1].
 TriangleMesh l_mesh() {
-  const std::vector<Eigen::Vector2d> profile = {{0, 0},     {0.3, 0},   {0.3, 0.1}, {0.1, 0.1},
-                                                {0.1, 0.3}, {0, 0.3},   {0, 0.1}};
+  const std::vector<Eigen::Vector2d> profile = {{0, 0},     {0.3, 0}, {0.3, 0.1}, {0.1, 0.1},
+                                                {0.1, 0.3}, {0, 0.3}, {0, 0.1}};
   TriangleMesh m;
   const auto n = static_cast<std::uint32_t>(profile.size());
   for (double y : {0.0, 0.1}) {
@@ -91,7 +91,8 @@ std::vector<Eigen::Vector3d> hull_surface_samples(const std::vector<Eigen::Vecto
       for (int j = 0; i + j <= per_edge; ++j) {
         const double a = static_cast<double>(i) / per_edge, b = static_cast<double>(j) / per_edge;
         out.push_back((1 - a - b) * v[static_cast<std::size_t>(t[0])] +
-                      a * v[static_cast<std::size_t>(t[1])] + b * v[static_cast<std::size_t>(t[2])]);
+                      a * v[static_cast<std::size_t>(t[1])] +
+                      b * v[static_cast<std::size_t>(t[2])]);
       }
     }
   }
@@ -144,8 +145,14 @@ TEST(ConvexDecomposition, LShapeIsCoveredAndWithinTolerance) {
 
 TEST(ConvexDecomposition, ConvexMeshStaysOneHull) {
   // A box (the L's foot) as the triangles of its hull.
-  const ConvexHull hull({{0, 0, 0}, {0.3, 0, 0}, {0, 0.1, 0}, {0.3, 0.1, 0}, {0, 0, 0.1},
-                         {0.3, 0, 0.1}, {0, 0.1, 0.1}, {0.3, 0.1, 0.1}});
+  const ConvexHull hull({{0, 0, 0},
+                         {0.3, 0, 0},
+                         {0, 0.1, 0},
+                         {0.3, 0.1, 0},
+                         {0, 0, 0.1},
+                         {0.3, 0, 0.1},
+                         {0, 0.1, 0.1},
+                         {0.3, 0.1, 0.1}});
   TriangleMesh m;
   m.vertices = hull.vertices();
   for (const auto& t : hull.triangles()) {
@@ -219,7 +226,7 @@ TEST(ConvexDecomposition, BallInTheNotchIsFreeOnlyWhenDecomposed) {
     options.decomposition.tolerance = 0.002;
     options.use_decomposition_cache = false;
     auto model = std::make_shared<const RobotModel>(RobotModel::from_urdf_file(urdf, options));
-    const CollisionChecker checker(model, AllowedCollisionMatrix(model->links().size()) , scene);
+    const CollisionChecker checker(model, AllowedCollisionMatrix(model->links().size()), scene);
     const ClearanceResult c = checker.clearance(q);
     if (geometry == MeshGeometry::kHull) {
       EXPECT_EQ(model->link(1).shapes.size(), 1u);
@@ -320,8 +327,9 @@ TEST(ConvexDecomposition, RealMeshesAreCoveredAndTight) {
     GTEST_SKIP() << "../shared/benchmarks/mbm absent";
   }
   const std::string ur5 = mbm + "/robots/ur5_robotiq85/meshes/";
-  for (const std::string& file : {ur5 + "ur5/collision/forearm.stl", ur5 + "ur5/collision/wrist2.stl",
-                                 ur5 + "robotiq/inner_knuckle_fine.STL"}) {
+  for (const std::string& file :
+       {ur5 + "ur5/collision/forearm.stl", ur5 + "ur5/collision/wrist2.stl",
+        ur5 + "robotiq/inner_knuckle_fine.STL"}) {
     SCOPED_TRACE(file);
     const TriangleMesh mesh = read_mesh(file, Eigen::Vector3d(1, 1, 1));
     const ConvexDecomposition d = decompose_mesh(mesh, {});

@@ -331,7 +331,7 @@ TEST_F(OwnArmPlanning, ClearanceCostObjectiveFallsWithClearance) {
   EXPECT_LT(objective.stateCost(setup_.state(up).get()).value(),
             objective.stateCost(setup_.state(start_).get()).value());
   // The motion cost integrates the state cost along the motion (trapezoids at OMPL's segment
-  // resolution): compare with a fine integral.
+  // resolution): compare with a fine integral (400 steps).
   const auto a = setup_.state(start_);
   Eigen::VectorXd q = start_;
   q[group_[1]] = 0.1;
@@ -345,7 +345,9 @@ TEST_F(OwnArmPlanning, ClearanceCostObjectiveFallsWithClearance) {
     fine += 0.5 * (objective.stateCost(p.get()).value() + objective.stateCost(r.get()).value()) *
             si->distance(p.get(), r.get());
   }
-  EXPECT_NEAR(objective.motionCost(a.get(), b.get()).value(), fine, 0.05 * fine);
+  // Within 10%: the clearance of a decomposed link has kinks where its closest piece changes,
+  // which trapezoids at the segment resolution follow less closely than a smooth hull's.
+  EXPECT_NEAR(objective.motionCost(a.get(), b.get()).value(), fine, 0.10 * fine);
   EXPECT_EQ(objective.motionCost(a.get(), a.get()).value(), 0.0);
 }
 

@@ -570,11 +570,16 @@ TEST_P(RobotUrdfCounts, LinksJointsShapesVariablesAndShapeKindsMatchTheUrdf) {
     ASSERT_GE(l, 0);
     const Link& link = model.link(l);
     EXPECT_EQ(link.name, ul.name);
-    ASSERT_EQ(link.shapes.size(), ul.collisions.size());
+    // The first shape of each <collision> element (a decomposed mesh has several pieces).
+    std::vector<const CollisionShape*> elements;
+    for (const CollisionShape& s : link.shapes) {
+      if (s.piece == 0) elements.push_back(&s);
+    }
+    ASSERT_EQ(elements.size(), ul.collisions.size());
     for (std::size_t k = 0; k < ul.collisions.size(); ++k) {
       SCOPED_TRACE("collision " + std::to_string(k));
       const UrdfCollision& uc = ul.collisions[k];
-      const CollisionShape& s = link.shapes[k];
+      const CollisionShape& s = *elements[k];
       ASSERT_EQ(kinds.count(uc.kind), 1u);
       EXPECT_EQ(s.unpadded.kind(), kinds.at(uc.kind));
       EXPECT_EQ(s.shape.kind(), kinds.at(uc.kind));
@@ -732,8 +737,8 @@ TEST_P(RobotMirroredMesh, HullIsTheMirrorImageAndFacesOutwards) {
     const std::string uri =
         generated ? "file://" + blob : "package://hullcheck_arm/meshes/" + mesh_name;
     const std::string path = generated ? blob : arm + "/meshes/" + mesh_name;
-    const RobotModel plain = RobotModel::from_urdf_string(one_mesh_urdf(uri, ""), arm + "/urdf",
-                                                          test::hull_options());
+    const RobotModel plain =
+        RobotModel::from_urdf_string(one_mesh_urdf(uri, ""), arm + "/urdf", test::hull_options());
     const RobotModel mirrored = RobotModel::from_urdf_string(one_mesh_urdf(uri, scale_text),
                                                              arm + "/urdf", test::hull_options());
     const ConvexHull& h0 = only_hull(plain);

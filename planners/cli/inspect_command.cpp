@@ -113,7 +113,8 @@ void print_model(const RobotModel& model) {
       if (s.piece_count > 1) {
         std::cout << "        piece vertices:";
         for (int k = 0; k < s.piece_count; ++k) {
-          const auto& piece = std::get<ConvexHull>(l.shapes[i + static_cast<std::size_t>(k)].unpadded.geometry());
+          const auto& piece =
+              std::get<ConvexHull>(l.shapes[i + static_cast<std::size_t>(k)].unpadded.geometry());
           std::cout << ' ' << piece.vertex_count();
         }
         std::cout << "\n";

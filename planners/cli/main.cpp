@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "benchmark_command.hpp"
+#include "decompose_command.hpp"
 #include "exit_codes.hpp"
 #include "inspect_command.hpp"
 #include "plan_command.hpp"
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   hullcheck::cli::add_inspect_command(app);
   hullcheck::cli::add_srdf_command(app);
+  hullcheck::cli::add_decompose_command(app);
   hullcheck::cli::add_plan_command(app);
   hullcheck::cli::add_validate_command(app);
   hullcheck::cli::add_benchmark_command(app);

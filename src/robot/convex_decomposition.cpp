@@ -124,8 +124,7 @@ std::vector<Eigen::Vector3d> cell_points(MeshView& view, const std::vector<int>&
   const TriangleMesh& m = view.mesh;
   for (int t : triangles) {
     const auto& tri = m.triangles[static_cast<std::size_t>(t)];
-    if (clip_triangle(m.vertices[tri[0]], m.vertices[tri[1]], m.vertices[tri[2]], cell,
-                      &points) &&
+    if (clip_triangle(m.vertices[tri[0]], m.vertices[tri[1]], m.vertices[tri[2]], cell, &points) &&
         kept != nullptr) {
       kept->push_back(t);
     }
@@ -200,10 +199,10 @@ void measure(MeshView& view, Piece* piece, bool stop_early) {
       // distance to the one triangle nearest c is convex, so at most its largest corner value.
       double part_bound = d + r;
       if (part_bound > tol) {
-        part_bound = std::min(
-            part_bound, std::max({view.distance.triangle_distance(p.a, near.triangle),
-                                  view.distance.triangle_distance(p.b, near.triangle),
-                                  view.distance.triangle_distance(p.c, near.triangle)}));
+        part_bound =
+            std::min(part_bound, std::max({view.distance.triangle_distance(p.a, near.triangle),
+                                           view.distance.triangle_distance(p.b, near.triangle),
+                                           view.distance.triangle_distance(p.c, near.triangle)}));
       }
       bool refutes = false;
       bool inside = false;
@@ -211,8 +210,8 @@ void measure(MeshView& view, Piece* piece, bool stop_early) {
         // Only points on a cell face can be inside the solid: elsewhere a hull boundary point
         // is not interior to the solid (the solid's part in the cells is inside the hull).
         if (face) {
-          inside = (c - p.ball_centre).norm() < p.ball_radius ? p.ball_inside
-                                                              : view.distance.inside(c);
+          inside =
+              (c - p.ball_centre).norm() < p.ball_radius ? p.ball_inside : view.distance.inside(c);
         }
         if (inside) {
           part_bound = std::max(0.0, r - d);  // the ball of radius d about c is in the solid
@@ -309,8 +308,7 @@ Cut best_cut(MeshView& view, const Piece& piece) {
       left.hi[axis] = position;
       right.lo[axis] = position;
       const double left_volume = hull_volume(cell_points(view, piece.triangles, left, nullptr));
-      const double right_volume =
-          hull_volume(cell_points(view, piece.triangles, right, nullptr));
+      const double right_volume = hull_volume(cell_points(view, piece.triangles, right, nullptr));
       // A cut leaving one side flat (only points on the plane) gains nothing and would make a
       // flat piece (qhull's joggled fallback gives flat sets a tiny volume, hence the margin).
       const double thin = 1e-9 * (hi - lo).prod();
@@ -423,8 +421,8 @@ void merge_pieces(MeshView& view, std::vector<std::unique_ptr<Piece>>* pieces, i
 void check_options(const TriangleMesh& mesh, const DecompositionOptions& options) {
   std::ostringstream msg;
   if (!std::isfinite(options.tolerance) || options.tolerance < 1e-6) {
-    msg << "decomposition tolerance must be finite and at least 1e-6 m (got "
-        << options.tolerance << ")";
+    msg << "decomposition tolerance must be finite and at least 1e-6 m (got " << options.tolerance
+        << ")";
   } else if (options.max_pieces < 1 || options.max_pieces > 1024) {
     msg << "decomposition max_pieces must be within 1..1024 (got " << options.max_pieces << ")";
   } else {
@@ -478,8 +476,7 @@ ConvexDecomposition decompose_mesh(const TriangleMesh& mesh, const Decomposition
   for (int round = 0; round < 4; ++round) {
     std::make_heap(pieces.begin(), pieces.end(), worse);
     bool split_any = false;
-    while (!pieces.empty() &&
-           static_cast<int>(pieces.size() + done.size()) < options.max_pieces) {
+    while (!pieces.empty() && static_cast<int>(pieces.size() + done.size()) < options.max_pieces) {
       std::pop_heap(pieces.begin(), pieces.end(), worse);
       std::unique_ptr<Piece> piece = std::move(pieces.back());
       pieces.pop_back();

@@ -1,3 +1,5 @@
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -10,8 +12,6 @@
 #include <sstream>
 #include <thread>
 
-#include <unistd.h>
-
 namespace hullcheck {
 
 namespace {
@@ -21,7 +21,8 @@ constexpr int kFormatVersion = 1;
 constexpr const char* kMagic = "hullcheck-decomposition";
 
 // 64-bit FNV-1a.
-std::uint64_t fnv1a(const void* data, std::size_t size, std::uint64_t hash = 0xcbf29ce484222325ull) {
+std::uint64_t fnv1a(const void* data, std::size_t size,
+                    std::uint64_t hash = 0xcbf29ce484222325ull) {
   const auto* bytes = static_cast<const unsigned char*>(data);
   for (std::size_t i = 0; i < size; ++i) {
     hash ^= bytes[i];
@@ -49,9 +50,9 @@ std::string read_bytes(const std::string& path, const MeshLimits& limits) {
   const auto size = std::filesystem::file_size(path, error);
   if (error) throw InputError("mesh '" + path + "': cannot be read: " + error.message());
   if (size > limits.max_file_bytes) {
-    throw InputError("mesh '" + path + "': file size " + std::to_string(size) +
-                     " bytes exceeds the limit max_file_bytes = " +
-                     std::to_string(limits.max_file_bytes));
+    throw InputError(
+        "mesh '" + path + "': file size " + std::to_string(size) +
+        " bytes exceeds the limit max_file_bytes = " + std::to_string(limits.max_file_bytes));
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("mesh '" + path + "': cannot be opened");
@@ -180,10 +181,10 @@ std::string default_decomposition_cache_dir() {
   return "";
 }
 
-MeshDecomposition decompose_mesh_file(
-    const std::string& path, const Eigen::Vector3d& scale, const DecompositionOptions& options,
-    const MeshLimits& limits, const std::string& cache_dir,
-    const std::function<void(const TriangleMesh&)>& check_mesh) {
+MeshDecomposition decompose_mesh_file(const std::string& path, const Eigen::Vector3d& scale,
+                                      const DecompositionOptions& options, const MeshLimits& limits,
+                                      const std::string& cache_dir,
+                                      const std::function<void(const TriangleMesh&)>& check_mesh) {
   if (!scale.allFinite()) throw InputError("mesh '" + path + "': scale is not finite");
   std::filesystem::path file;
   EntryKey key{0, 0, scale, options};

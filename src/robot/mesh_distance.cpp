@@ -10,7 +10,7 @@ namespace hullcheck::detail {
 namespace {
 constexpr int kLeafSize = 4;  // triangles per leaf of the box tree
 constexpr int kDegenerateRay = std::numeric_limits<int>::min();  // crossings(): retry
-}
+}  // namespace
 
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                           const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
@@ -230,7 +230,7 @@ int MeshDistance::crossings(const Eigen::Vector3d& p, const Eigen::Vector3d& d) 
 bool MeshDistance::inside(const Eigen::Vector3d& p) const {
   // Directions with no simple relation to axis-aligned or symmetric geometry.
   static const Eigen::Vector3d kDirections[] = {
-      Eigen::Vector3d(0.5773, 0.4207, 0.7001), Eigen::Vector3d(-0.3307, 0.8843, -0.3296),
+      Eigen::Vector3d(0.5773, 0.4207, 0.7001),   Eigen::Vector3d(-0.3307, 0.8843, -0.3296),
       Eigen::Vector3d(0.7912, -0.5213, -0.3199), Eigen::Vector3d(-0.6133, -0.2857, 0.7365),
       Eigen::Vector3d(0.1361, -0.9411, 0.3095),  Eigen::Vector3d(-0.8123, 0.1874, -0.5524),
       Eigen::Vector3d(0.2459, 0.6687, -0.7016),  Eigen::Vector3d(-0.0874, -0.4422, -0.8927)};

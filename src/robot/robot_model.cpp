@@ -233,10 +233,10 @@ class Loader {
       shapes.hulls.emplace_back(distinct_points(vertices));
       shapes.vertex_count = vertices.size();
     } else {
-      const std::string cache_dir =
-          !options_.use_decomposition_cache ? std::string()
-          : options_.decomposition_cache_dir.empty() ? default_decomposition_cache_dir()
-                                                     : options_.decomposition_cache_dir;
+      const std::string cache_dir = !options_.use_decomposition_cache ? std::string()
+                                    : options_.decomposition_cache_dir.empty()
+                                        ? default_decomposition_cache_dir()
+                                        : options_.decomposition_cache_dir;
       const MeshDecomposition d = decompose_mesh_file(
           path, scale, options_.decomposition, options_.mesh_limits, cache_dir,
           [&](const TriangleMesh& mesh) { check_mesh_extent(mesh.vertices, what); });

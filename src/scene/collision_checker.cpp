@@ -385,8 +385,8 @@ void CollisionChecker::place(const std::vector<Eigen::Isometry3d>& link_poses, S
     c /= static_cast<double>(group.end - group.begin);
     double radius = 0.0;
     for (int i = group.begin; i < group.end; ++i) {
-      radius = std::max(radius,
-                        (center(i, s) - c).norm() + shapes_[static_cast<std::size_t>(i)].radius);
+      radius =
+          std::max(radius, (center(i, s) - c).norm() + shapes_[static_cast<std::size_t>(i)].radius);
     }
     s.group_centers[g] = c;
     s.group_radii[g] = radius;
@@ -397,7 +397,8 @@ const Eigen::Vector3d& CollisionChecker::center(int shape, Scratch& s) const {
   const auto i = static_cast<std::size_t>(shape);
   if (s.centered[i] != s.stamp) {
     s.centered[i] = s.stamp;
-    s.centers[i] = (*s.link_poses_in)[static_cast<std::size_t>(shapes_[i].link)] * shapes_[i].center;
+    s.centers[i] =
+        (*s.link_poses_in)[static_cast<std::size_t>(shapes_[i].link)] * shapes_[i].center;
   }
   return s.centers[i];
 }
@@ -505,10 +506,11 @@ bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_po
         if (block.end - block.begin > kGroupSize) {
           // Many piece pairs: each piece against the other link's hull first; only pieces
           // meeting it can meet a piece of that link. A mark is this query and block's stamp.
-          const std::uint64_t mark = (s.stamp << 20) + static_cast<std::uint64_t>(&block - self_blocks_.data()) + 1;
+          const std::uint64_t mark =
+              (s.stamp << 20) + static_cast<std::uint64_t>(&block - self_blocks_.data()) + 1;
           bool any_a = false, any_b = false;
-          const auto mark_pieces = [&](int link_ball, const Shape& other, const Eigen::Isometry3d& other_pose,
-                                       bool* any) {
+          const auto mark_pieces = [&](int link_ball, const Shape& other,
+                                       const Eigen::Isometry3d& other_pose, bool* any) {
             const int l = link_balls_[static_cast<std::size_t>(link_ball)].link;
             const int begin = shape_begin_[static_cast<std::size_t>(l)];
             const int end = shape_begin_[static_cast<std::size_t>(l) + 1];
@@ -532,11 +534,13 @@ bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_po
               continue;
             }
             if (intersect(model_->link(shapes_[static_cast<std::size_t>(p.a)].link)
-                              .shapes[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(p.a)].shape)]
+                              .shapes[static_cast<std::size_t>(
+                                  shapes_[static_cast<std::size_t>(p.a)].shape)]
                               .shape,
                           shape_pose(p.a, s),
                           model_->link(shapes_[static_cast<std::size_t>(p.b)].link)
-                              .shapes[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(p.b)].shape)]
+                              .shapes[static_cast<std::size_t>(
+                                  shapes_[static_cast<std::size_t>(p.b)].shape)]
                               .shape,
                           shape_pose(p.b, s))) {
               return false;
@@ -551,8 +555,7 @@ bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_po
       const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
       const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
       const double reach = a.radius + b.radius;
-      if ((center(p.a, s) - center(p.b, s))
-              .squaredNorm() > reach * reach) {
+      if ((center(p.a, s) - center(p.b, s)).squaredNorm() > reach * reach) {
         continue;
       }
       if (intersect(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
@@ -633,8 +636,8 @@ ClearanceResult CollisionChecker::nearest_pair(Scratch& s) const {
       const RobotShape& rs = shapes_[static_cast<std::size_t>(p.shape)];
       const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(p.obstacle)];
       Eigen::Vector3d towards_shape;
-      box_gap(boxes_[static_cast<std::size_t>(p.obstacle)],
-              center(p.shape, s), rs.radius, &towards_shape);
+      box_gap(boxes_[static_cast<std::size_t>(p.obstacle)], center(p.shape, s), rs.radius,
+              &towards_shape);
       slab_bounds(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
                   shape_pose(p.shape, s), o.shape, o.pose, -towards_shape, &slab, &upper);
     } else {
@@ -650,8 +653,7 @@ ClearanceResult CollisionChecker::nearest_pair(Scratch& s) const {
         // The closest pair's direction at the grid cell's centre: a near-optimal slab.
         n = -(pose_a.linear() * *direction).normalized();
       } else {  // the balls' direction
-        const Eigen::Vector3d ab =
-            center(p.b, s) - center(p.a, s);
+        const Eigen::Vector3d ab = center(p.b, s) - center(p.a, s);
         const double centres = ab.norm();
         if (!(centres > 0.0)) return ball;  // concentric balls: no direction, no slab
         n = ab / centres;
@@ -667,13 +669,13 @@ ClearanceResult CollisionChecker::nearest_pair(Scratch& s) const {
   // one entry bounded by the links' balls (a block code, negative), expanded into its pairs
   // when it comes first. A block of an obstacle and a decomposed mesh's pieces likewise. Block
   // entries come first with their ball bound, then (when both sides have one bounding shape)
-  // with the distance between the bounding shapes, a lower bound for every pair inside. The nearest pair is refined at once: its slab sets a first cut that culls most
-  // obstacle pairs (on arms the closest pair is often a self pair).
+  // with the distance between the bounding shapes, a lower bound for every pair inside. The nearest
+  // pair is refined at once: its slab sets a first cut that culls most obstacle pairs (on arms the
+  // closest pair is often a self pair).
   s.nearest.clear();
   const auto pair_ball = [&](std::size_t k) {
     const SelfPair& p = self_pairs_[k];
-    return (center(p.b, s) - center(p.a, s))
-               .norm() -
+    return (center(p.b, s) - center(p.a, s)).norm() -
            shapes_[static_cast<std::size_t>(p.a)].radius -
            shapes_[static_cast<std::size_t>(p.b)].radius;
   };
@@ -917,14 +919,12 @@ double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q
     double lb, motion;
     if (i < n_env) {
       const EnvironmentPair& p = environment_pairs_[i];
-      lb = box_gap(boxes_[static_cast<std::size_t>(p.obstacle)],
-                   center(p.shape, s),
+      lb = box_gap(boxes_[static_cast<std::size_t>(p.obstacle)], center(p.shape, s),
                    shapes_[static_cast<std::size_t>(p.shape)].radius);
       motion = shape_levers_.row(p.shape).dot(abs_dq) + extra;
     } else {
       const SelfPair& p = self_pairs_[i - n_env];
-      lb = (center(p.a, s) - center(p.b, s))
-               .norm() -
+      lb = (center(p.a, s) - center(p.b, s)).norm() -
            shapes_[static_cast<std::size_t>(p.a)].radius -
            shapes_[static_cast<std::size_t>(p.b)].radius;
       motion =

@@ -178,16 +178,16 @@ void run_robot(const RobotCase& rc, int problems_per_family, std::ostream& table
   const auto us = [](double s, long n) { return n > 0 ? 1e6 * s / static_cast<double>(n) : 0.0; };
   char row[1024];
   for (int m = 0; m < 2; ++m) {
-    std::snprintf(
-        row, sizeof row,
-        "| %s | %s | %zu (max %d per mesh) | %.1f mm | %.0f | %.2f | %ld / %ld | %.2f | %ld / %ld | "
-        "%.2f | %.2f |\n",
-        rc.id.c_str(), m == 0 ? "hull" : "decompose", f[m].shapes, f[m].max_pieces,
-        m == 0 ? 0.0 : 1e3 * f[m].worst_bound,
-        1e3 * f[m].load_s, 1e3 * f[m].checker_s / static_cast<double>(scenes), f[m].line_valid,
-        f[m].line_states, us(f[m].valid_line_s, f[m].line_states), f[m].random_valid,
-        f[m].random_states, us(f[m].valid_random_s, f[m].random_states),
-        us(f[m].clearance_line_s, f[m].line_states));
+    std::snprintf(row, sizeof row,
+                  "| %s | %s | %zu (max %d per mesh) | %.1f mm | %.0f | %.2f | %ld / %ld | %.2f | "
+                  "%ld / %ld | "
+                  "%.2f | %.2f |\n",
+                  rc.id.c_str(), m == 0 ? "hull" : "decompose", f[m].shapes, f[m].max_pieces,
+                  m == 0 ? 0.0 : 1e3 * f[m].worst_bound, 1e3 * f[m].load_s,
+                  1e3 * f[m].checker_s / static_cast<double>(scenes), f[m].line_valid,
+                  f[m].line_states, us(f[m].valid_line_s, f[m].line_states), f[m].random_valid,
+                  f[m].random_states, us(f[m].valid_random_s, f[m].random_states),
+                  us(f[m].clearance_line_s, f[m].line_states));
     table << row;
   }
   std::snprintf(row, sizeof row,
@@ -218,13 +218,13 @@ int main(int argc, char** argv) {
       });
   if (quick) problems = 1;
   const std::string mbm = hullcheck::bench::shared_dir() + "/benchmarks/mbm";
-  const std::vector<RobotCase> cases = {
-      {"panda", mbm + "/robots/panda_obj/panda.urdf", mbm + "/robots/panda_obj/panda.srdf",
-       mbm + "/panda"},
-      {"ur5", mbm + "/robots/ur5_robotiq85/ur5.urdf", mbm + "/robots/ur5_robotiq85/ur5.srdf",
-       mbm + "/ur5"}};
+  const std::vector<RobotCase> cases = {{"panda", mbm + "/robots/panda_obj/panda.urdf",
+                                         mbm + "/robots/panda_obj/panda.srdf", mbm + "/panda"},
+                                        {"ur5", mbm + "/robots/ur5_robotiq85/ur5.urdf",
+                                         mbm + "/robots/ur5_robotiq85/ur5.srdf", mbm + "/ur5"}};
   std::ostringstream table;
-  table << "| robot | shapes | count | pieces within (hull: not measured) | load (ms) | checker (ms) | line: valid | "
+  table << "| robot | shapes | count | pieces within (hull: not measured) | load (ms) | checker "
+           "(ms) | line: valid | "
            "is_valid line (us) | random: valid | is_valid random (us) | clearance line (us) |\n"
            "|---|---|---|---|---|---|---|---|---|---|---|\n";
   try {

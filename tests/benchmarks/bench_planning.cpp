@@ -7,7 +7,7 @@
 //
 //   bench_planning run --robot URDF --srdf SRDF --problems DIR... --out RESULTS.csv
 //                      [--planner RRTConnect] [--time 10] [--shard i/n] [--seed 1]
-//                      [--per-family N] [--guaranteed]
+//                      [--per-family N] [--guaranteed] [--compare-hull]
 //   bench_planning summarize RESULTS.csv... [--table FILE] [--title TEXT]
 //
 // Both checkers plan with OMPL's DiscreteMotionValidator at the same resolution (the FCL checker
@@ -17,7 +17,8 @@
 // (by hullcheck; FCL's verdict is recorded beside it) are listed, not planned. Every solution
 // path is re-checked with hullcheck's guaranteed motion validator (conservative advancement)
 // and the result recorded: discrete checking can accept motions that cut into an obstacle.
-// With --guaranteed, a third attempt plans with that validator itself (same seed).
+// With --guaranteed, a third attempt plans with that validator itself (same seed). With
+// --compare-hull, another plans with one convex hull per mesh instead of the convex pieces.
 //
 // One CSV line per problem and checker:
 //   robot,problem,checker,start_goal_valid,fcl_agrees,solved,time_s,checks,length,path_valid
@@ -90,8 +91,9 @@ struct RunOptions {
   double time = 10.0;
   std::string shard = "0/1";
   unsigned seed = 1;
-  int per_family = 0;       // 0: all
-  bool guaranteed = false;  // also plan with hullcheck's guaranteed motion validator
+  int per_family = 0;         // 0: all
+  bool guaranteed = false;    // also plan with hullcheck's guaranteed motion validator
+  bool compare_hull = false;  // also plan with one convex hull per mesh (MeshGeometry::kHull)
   std::string out;
 };
 
@@ -175,6 +177,16 @@ void run(const RunOptions& o) {
   const hullcheck::Srdf srdf = hullcheck::read_srdf_file(o.srdf);
   const hullcheck::AllowedCollisionMatrix matrix =
       hullcheck::AllowedCollisionMatrix::from_srdf(*model, srdf);
+  // --compare-hull: the same robot with one hull per mesh (same links, joints and variables).
+  hullcheck::RobotLoadOptions hull_options;
+  hull_options.mesh_geometry = hullcheck::MeshGeometry::kHull;
+  const auto hull_model = o.compare_hull
+                              ? std::make_shared<const hullcheck::RobotModel>(
+                                    hullcheck::RobotModel::from_urdf_file(o.urdf, hull_options))
+                              : nullptr;
+  const hullcheck::AllowedCollisionMatrix hull_matrix =
+      o.compare_hull ? hullcheck::AllowedCollisionMatrix::from_srdf(*hull_model, srdf)
+                     : hullcheck::AllowedCollisionMatrix();
 
   std::ofstream out(o.out);
   out << "robot,problem,checker,start_goal_valid,fcl_agrees,solved,time_s,checks,length,"
@@ -193,9 +205,24 @@ void run(const RunOptions& o) {
                               : hullcheck::group_variables(*model, srdf, request.group);
     const bool valid = hc->is_valid(request.start) && hc->is_valid(request.goal);
     const bool fcl_valid = fcl.is_valid(request.start) && fcl.is_valid(request.goal);
-    const char* names[3] = {"hullcheck", "fcl", "hullcheck_guaranteed"};
-    Attempt attempts[3];
-    const int checkers = o.guaranteed ? 3 : 2;
+    const char* names[4] = {"hullcheck", "fcl", "hullcheck_guaranteed", "hullcheck_hull"};
+    Attempt attempts[4];
+    std::vector<int> checkers = {0, 1};
+    if (o.guaranteed) checkers.push_back(2);
+    if (o.compare_hull) checkers.push_back(3);
+    bool hull_valid = false;
+    if (o.compare_hull) {
+      auto hull = std::make_shared<const hullcheck::CollisionChecker>(
+          hull_model, hull_matrix, hullcheck::read_planning_scene(problem.scene, *hull_model));
+      hull_valid = hull->is_valid(request.start) && hull->is_valid(request.goal);
+      if (hull_valid) {
+        const hullcheck::PlanningSetup verify_hull = hullcheck::make_planning_setup(
+            hull, variables, request.start, hullcheck::MotionChecking::kGuaranteed);
+        attempts[3] = plan(o, hull, nullptr, variables, request, verify_hull,
+                           static_cast<std::uint_fast32_t>(o.seed + shard_index + i * shard_count),
+                           hullcheck::MotionChecking::kDiscrete);
+      }
+    }
     if (valid) {
       const hullcheck::PlanningSetup verify = hullcheck::make_planning_setup(
           hc, variables, request.start, hullcheck::MotionChecking::kGuaranteed);
@@ -211,12 +238,12 @@ void run(const RunOptions& o) {
                            hullcheck::MotionChecking::kGuaranteed);
       }
     }
-    for (int c = 0; c < checkers; ++c) {
+    for (int c : checkers) {
       const Attempt& a = attempts[c];
-      out << model->name() << ',' << problem.name << ',' << names[c] << ',' << (valid ? 1 : 0)
-          << ',' << (valid == fcl_valid ? 1 : 0) << ',' << (a.solved ? 1 : 0) << ','
-          << std::setprecision(6) << a.time << ',' << a.checks << ',' << a.length << ','
-          << a.path_valid << '\n';
+      out << model->name() << ',' << problem.name << ',' << names[c] << ','
+          << ((c == 3 ? hull_valid : valid) ? 1 : 0) << ',' << (valid == fcl_valid ? 1 : 0) << ','
+          << (a.solved ? 1 : 0) << ',' << std::setprecision(6) << a.time << ',' << a.checks << ','
+          << a.length << ',' << a.path_valid << '\n';
     }
     out.flush();
     const double elapsed =
@@ -356,9 +383,14 @@ void summarize(const std::vector<std::string>& files, const std::string& table_f
   // problem key -> (hullcheck row, fcl row); guaranteed-mode rows apart
   std::map<std::string, std::pair<const Row*, const Row*>> by_problem;
   std::map<std::string, std::vector<const Row*>> guaranteed;  // per robot
+  std::map<std::string, std::vector<const Row*>> hull_rows;   // per robot (--compare-hull)
   for (const Row& r : rows) {
     if (r.checker == "hullcheck_guaranteed") {
       guaranteed[r.robot].push_back(&r);
+      continue;
+    }
+    if (r.checker == "hullcheck_hull") {
+      hull_rows[r.robot].push_back(&r);
       continue;
     }
     auto& slot = by_problem[r.robot + "/" + r.problem];
@@ -425,6 +457,21 @@ void summarize(const std::vector<std::string>& files, const std::string& table_f
         << f.paths_invalid << " |\n";
     }
   }
+  if (!hull_rows.empty()) {
+    t << "\nConvex pieces (the default) against one convex hull per mesh (OMPL's discrete motion "
+         "validator for both; same seeds):\n\n| robot | problems | valid start/goal: pieces / "
+         "hull | solved: pieces / hull | median solve (ms): pieces / hull | per check (us): "
+         "pieces / hull |\n|---|---|---|---|---|---|\n";
+    for (const auto& [robot, list] : hull_rows) {
+      const Figures h = checker_figures(list);
+      const Group& g = *std::find_if(groups.begin(), groups.end(),
+                                     [&](const Group& x) { return x.name == robot; });
+      t << "| " << robot << " | " << list.size() << " | " << g.valid << " / " << h.valid << " | "
+        << g.hc.solved << " / " << h.solved << " | " << ms(g.hc.median_time) << " / "
+        << ms(h.median_time) << " | " << std::setprecision(3) << g.hc.median_check_us << " / "
+        << h.median_check_us << " |\n";
+    }
+  }
   int disagreements = 0;
   double planning_time = 0.0;
   for (const Group& g : family_groups) {
@@ -462,6 +509,8 @@ int main(int argc, char** argv) {
   run_command->add_flag("--guaranteed", o.guaranteed,
                         "Also plan with hullcheck's guaranteed motion validator (checker "
                         "'hullcheck_guaranteed')");
+  run_command->add_flag("--compare-hull", o.compare_hull,
+                        "Also plan with one convex hull per mesh instead of convex pieces");
   run_command->add_option("--per-family", o.per_family,
                           "Only the first N problems of each scene family (default: all)");
   run_command->add_option("--out", o.out, "Results CSV to write")->required();

@@ -37,8 +37,20 @@ expect "inspect shows the continuous joint" 0 "joint7 +continuous" "" -- \
   "$bin" inspect --robot "$urdf"
 expect "inspect shows the mimic joint" 0 "finger_joint2 +prismatic +mimics finger_joint1" "" -- \
   "$bin" inspect --robot "$urdf"
-expect "inspect shows mesh hulls" 0 "hull [0-9]+ vertices \(mesh [0-9]+, link5_mm.stl\)" "" -- \
-  "$bin" inspect --robot "$urdf"
+expect "inspect shows mesh hulls" 0 "hull [0-9]+ vertices \(mesh [0-9]+ vertices, link5_mm.stl\)" "" -- \
+  "$bin" inspect --robot "$urdf" --mesh-geometry hull
+expect "inspect shows convex pieces" 0 \
+  "[0-9]+ convex pieces \(mesh [0-9]+ vertices, link5_mm.stl, within [0-9.]+ mm of it\)" "" -- \
+  "$bin" inspect --robot "$urdf" --cache-dir "$tmp/cache"
+expect "decompose fills the cache and writes a URDF of pieces" 0 \
+  "wrote .*pieces.urdf \([0-9]+ piece meshes" "" -- \
+  "$bin" decompose --robot "$urdf" --cache-dir "$tmp/cache" --write-urdf "$tmp/pieces.urdf"
+expect "decompose lists the pieces per link" 0 "link5 +link5_mm.stl +[0-9]+ pieces +within" "" -- \
+  "$bin" decompose --robot "$urdf" --cache-dir "$tmp/cache"
+expect "the URDF of pieces loads, one hull per piece" 0 "hull [0-9]+ vertices \(mesh [0-9]+ vertices, link5_0_piece1.stl\)" "" -- \
+  "$bin" inspect --robot "$tmp/pieces.urdf" --mesh-geometry hull --package "hullcheck_arm=$arm"
+expect "decompose: bad tolerance" 1 "" "tolerance" -- \
+  "$bin" decompose --robot "$urdf" --tolerance 0
 expect "inspect shows links without geometry" 0 "no collision geometry" "" -- \
   "$bin" inspect --robot "$urdf"
 expect "inspect --state: free pose" 0 "self-collision .*: free" "" -- \

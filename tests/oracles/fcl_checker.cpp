@@ -53,8 +53,8 @@ Geometry to_fcl(const Shape& shape, const std::string& what) {
     }
     // throw_if_invalid: a triangulation FCL cannot use (not watertight) must not go unnoticed;
     // a polygon is not a closed surface, so the check is off for it.
-    auto convex = std::make_shared<fcl::Convexd>(
-        vertices, static_cast<int>(faces->size() / 4), faces, /*throw_if_invalid=*/!flat);
+    auto convex = std::make_shared<fcl::Convexd>(vertices, static_cast<int>(faces->size() / 4),
+                                                 faces, /*throw_if_invalid=*/!flat);
     out = convex;
   }
   out->computeLocalAABB();

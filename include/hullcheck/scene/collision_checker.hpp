@@ -119,13 +119,13 @@ class CollisionChecker {
   struct SelfPair {
     int a, b;  // indices into shapes_
   };
-  struct SelfBlock {      // the self pairs of one link pair, self_pairs_[begin, end)
-    int link_a, link_b;   // indices into link_balls_
+  struct SelfBlock {     // the self pairs of one link pair, self_pairs_[begin, end)
+    int link_a, link_b;  // indices into link_balls_
     int begin, end;
   };
-  struct LinkBall {                 // a ball enclosing every shape ball of one link
-    int link;                       // index into the model's links
-    Eigen::Vector3d center;         // link frame
+  struct LinkBall {          // a ball enclosing every shape ball of one link
+    int link;                // index into the model's links
+    Eigen::Vector3d center;  // link frame
     double radius;
     // A shape containing all of the link's shapes: shapes_[bound]'s element hull when the link
     // is one decomposed mesh, shapes_[bound] itself when it is one shape; -1 otherwise.
@@ -187,7 +187,7 @@ class CollisionChecker {
   PlanningScene scene_;
   std::vector<RobotShape> shapes_;
   std::vector<ObstacleBox> boxes_;
-  std::vector<SelfPair> self_pairs_;   // grouped by link pair
+  std::vector<SelfPair> self_pairs_;  // grouped by link pair
   std::vector<SelfBlock> self_blocks_;
   std::vector<LinkBall> link_balls_;  // links with geometry
   std::vector<int> shape_begin_;      // per link (and one past): its first index in shapes_
