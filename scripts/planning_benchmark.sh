@@ -47,7 +47,8 @@ for ((i = 0; i < jobs; ++i)); do
         ur5) urdf="$mbm/robots/ur5_robotiq85/ur5.urdf" srdf="$mbm/robots/ur5_robotiq85/ur5.srdf" ;;
       esac
       "$bench" run --robot "$urdf" --srdf "$srdf" --problems "$mbm/$robot" --time "$time_limit" \
-        --shard "$i/$jobs" --per-family "$per_family" --guaranteed --out "$out/$robot-$i.csv" \
+        --shard "$i/$jobs" --per-family "$per_family" --guaranteed --compare-hull \
+        --out "$out/$robot-$i.csv" \
         2>"$out/$robot-$i.log"
     done
   ) &

@@ -1,9 +1,11 @@
-// libFuzzer target: mesh bytes -> read_mesh_vertices (assimp) -> convex hull. The library reads
+// libFuzzer target: mesh bytes -> read_mesh (assimp) -> convex hull -> convex decomposition. The library reads
 // meshes from files only, so the input goes to a per-process temp file whose extension follows
 // the content: '<' first -> .dae, "solid" or binary bytes -> .stl, otherwise .obj.
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstring>
 #include <hullcheck/convex_hull.hpp>
+#include <hullcheck/robot/convex_decomposition.hpp>
 #include <hullcheck/robot/mesh_file.hpp>
 #include <string>
 #include <vector>
@@ -34,10 +36,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string file = fuzz::temp_path(extension_for(data, size));
   fuzz::write_file(file, data, size);
   fuzz::expect_input_errors_only([&] {
-    const std::vector<Eigen::Vector3d> vertices =
-        read_mesh_vertices(file, Eigen::Vector3d(1.0, 1.0, 1.0));
-    const ConvexHull hull(vertices);
-    static_cast<void>(hull);
+    const TriangleMesh mesh = read_mesh(file, Eigen::Vector3d(1.0, 1.0, 1.0));
+    const ConvexHull hull(mesh.vertices);
+    // The decomposition at a tolerance of 5% of the mesh's size and a small piece budget (a
+    // few milliseconds), so that the fuzzer explores degenerate and broken triangle soups.
+    DecompositionOptions options;
+    options.tolerance = std::max(1e-6, 0.05 * hull.extent());
+    options.max_pieces = 4;
+    const ConvexDecomposition pieces = decompose_mesh(mesh, options);
+    if (pieces.pieces.empty()) __builtin_trap();  // a mesh with vertices has a piece
   });
   std::remove(file.c_str());
   return 0;

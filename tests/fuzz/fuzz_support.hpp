@@ -22,6 +22,10 @@ inline std::string arm_dir() { return HULLCHECK_FUZZ_ARM_DIR; }
 inline RobotLoadOptions arm_options() {
   RobotLoadOptions options;
   options.packages["hullcheck_arm"] = arm_dir();
+  // One hull per mesh: a fuzzed URDF's mesh scales would each start a decomposition (about a
+  // second) and a cache entry; decomposition is fuzzed on its own in fuzz_mesh.
+  options.mesh_geometry = MeshGeometry::kHull;
+  options.use_decomposition_cache = false;
   return options;
 }
 

@@ -136,6 +136,9 @@ struct RobotLoadOptions {
 /// gives that order and `variable_index()` looks names up. Limits are not enforced by
 /// kinematics (data sets hold states slightly outside them).
 ///
+/// Collision meshes become convex pieces within a tolerance of the mesh (default 3 mm), or one
+/// convex hull each (RobotLoadOptions::mesh_geometry); decompositions are cached on disk
+/// (decomposition_cache.hpp), so a robot's first load may take seconds and later ones do not.
 /// Visual geometry is ignored (its meshes need not exist). Loading throws InputError naming
 /// the file, element and problem: malformed XML, an unresolvable or unreadable collision
 /// mesh or one beyond `RobotLoadOptions::mesh_limits`, joints that do not form one tree

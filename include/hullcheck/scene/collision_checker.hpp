@@ -41,7 +41,10 @@ struct ClearanceResult {
 /// the robot's padding.
 ///
 /// Broad phase: robot shapes' bounding balls against each other and against each obstacle's
-/// oriented bounding box; exact GJK/EPA (core queries, their tolerances) for the survivors.
+/// oriented bounding box, links' and shape groups' balls first; for a link decomposed into
+/// convex pieces (RobotLoadOptions::mesh_geometry), its mesh's hull before its pieces (it
+/// contains them: a clear hull clears them all, and its distance bounds theirs); exact GJK/EPA
+/// (core queries, their tolerances) for the survivors. Pieces of one link are never paired.
 /// All query methods are const and thread-safe: scratch storage is per thread, allocated on a
 /// thread's first call and reused, so queries do not allocate after that.
 class CollisionChecker {
