@@ -21,6 +21,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <random>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -29,6 +30,7 @@
 #include "fcl_mesh_checker.hpp"
 #include "fcl_mesh_model.hpp"
 #include "mesh_test_support.hpp"
+#include "robot_test_support.hpp"
 #include "scene_test_support.hpp"
 
 namespace hullcheck {
@@ -547,6 +549,58 @@ TEST(MeshTruth, MbmStartAndGoalStates) {
     expect_agrees_beyond_tolerance(
         check_mbm_states(robot, pieces, 2.0 * pieces.decomposition.tolerance));
   }
+}
+
+// Random UR5 configurations (self pairs only; SRDF matrix): the pieces must reject every state
+// whose meshes touch and accept every state whose meshes are more than twice the tolerance
+// apart (the forearm's concave elbow end against the wrist is where its hull lied); the hulls
+// must reject every touching state too, and are counted where they reject free meshes.
+TEST(MeshTruth, Ur5RandomStatesAgreeBeyondTwiceTheTolerance) {
+  const std::vector<test::MbmRobot> robots = test::mbm_robots();
+  const auto ur5 = std::find_if(robots.begin(), robots.end(),
+                                [](const test::MbmRobot& r) { return r.id == "ur5"; });
+  if (ur5 == robots.end()) GTEST_SKIP() << "MotionBenchMaker UR5 (../shared) absent";
+  const RobotLoadOptions pieces_options;
+  const double tolerance = 2.0 * pieces_options.decomposition.tolerance;
+  const auto pieces =
+      std::make_shared<const RobotModel>(RobotModel::from_urdf_file(ur5->urdf, pieces_options));
+  const auto hulls = std::make_shared<const RobotModel>(
+      RobotModel::from_urdf_file(ur5->urdf, test::hull_options()));
+  const Srdf srdf = read_srdf_file(ur5->srdf);
+  const AllowedCollisionMatrix matrix = AllowedCollisionMatrix::from_srdf(*pieces, srdf);
+  const CollisionChecker piece_checker(pieces, matrix, PlanningScene{});
+  const CollisionChecker hull_checker(hulls, AllowedCollisionMatrix::from_srdf(*hulls, srdf),
+                                      PlanningScene{});
+  test::FclMeshChecker oracle(test::cached_meshes(ur5->urdf), *pieces, matrix, PlanningScene{});
+  std::mt19937_64 rng(5);
+  std::vector<Eigen::Isometry3d> poses;
+  int touching = 0, apart = 0, near = 0, hull_lies = 0;
+  const int states = test::sample_count(3000, "HULLCHECK_MESH_TRUTH_STATES");
+  for (int n = 0; n < states; ++n) {
+    const Eigen::VectorXd q = test::random_configuration(*pieces, rng);
+    pieces->compute_link_poses(q, poses);
+    oracle.set_link_poses(poses);
+    const test::FclMeshDistance d = oracle.min_distance(0.05);
+    const bool piece_valid = piece_checker.is_valid(q);
+    const bool hull_valid = hull_checker.is_valid(q);
+    if (d.collision) {
+      ++touching;
+      EXPECT_FALSE(piece_valid) << "meshes touch (" << oracle.pair_name(d.pair) << "), q "
+                                << q.transpose();
+      EXPECT_FALSE(hull_valid) << "meshes touch, q " << q.transpose();
+    } else if (d.distance > tolerance) {
+      ++apart;
+      near += d.distance < 0.02 ? 1 : 0;
+      EXPECT_TRUE(piece_valid) << "meshes " << d.distance << " m apart, q " << q.transpose();
+      hull_lies += hull_valid ? 0 : 1;
+    }
+  }
+  std::printf(
+      "[ ur5 self ] %d random states: meshes touch in %d, apart by more than %.0f mm in "
+      "%d (%d of them within 2 cm); the hulls reject %d of those\n",
+      states, touching, 1e3 * tolerance, apart, near, hull_lies);
+  EXPECT_GT(touching, 0);
+  EXPECT_GT(near, 0);
 }
 
 }  // namespace

@@ -99,7 +99,8 @@ int write_pieces_urdf(const RobotModel& model, const std::string& urdf, const fs
         write_binary_stl(mesh_dir / file, std::get<ConvexHull>(s->unpadded.geometry()));
         ++files;
         auto* copy = collisions[e]->DeepClone(&doc)->ToElement();
-        copy->SetAttribute("name", (std::string(name) + "_piece" + std::to_string(s->piece)).c_str());
+        copy->SetAttribute("name",
+                           (std::string(name) + "_piece" + std::to_string(s->piece)).c_str());
         tinyxml2::XMLElement* mesh = copy->FirstChildElement("geometry")->FirstChildElement("mesh");
         const fs::path target = fs::absolute(mesh_dir / file);
         mesh->SetAttribute("filename", target.lexically_relative(out_dir).string().c_str());
@@ -157,7 +158,7 @@ void add_decompose_command(CLI::App& app) {
                     within ? "" : "  (piece budget reached: above the tolerance)");
       }
     }
-    const std::string cache = robot.no_cache ? std::string("none")
+    const std::string cache = robot.no_cache            ? std::string("none")
                               : robot.cache_dir.empty() ? default_decomposition_cache_dir()
                                                         : robot.cache_dir;
     std::printf(

@@ -1,6 +1,7 @@
-// libFuzzer target: mesh bytes -> read_mesh (assimp) -> convex hull -> convex decomposition. The library reads
-// meshes from files only, so the input goes to a per-process temp file whose extension follows
-// the content: '<' first -> .dae, "solid" or binary bytes -> .stl, otherwise .obj.
+// libFuzzer target: mesh bytes -> read_mesh (assimp) -> convex hull -> convex decomposition. The
+// library reads meshes from files only, so the input goes to a per-process temp file whose
+// extension follows the content: '<' first -> .dae, "solid" or binary bytes -> .stl, otherwise
+// .obj.
 #include <Eigen/Core>
 #include <algorithm>
 #include <cstring>
