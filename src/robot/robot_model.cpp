@@ -535,9 +535,12 @@ void RobotModel::apply_padding() {
   for (Link& link : links_) {
     const auto it = link_padding_.find(link.name);
     link.padding = it == link_padding_.end() ? default_padding_ : it->second;
-    for (CollisionShape& s : link.shapes) {
+    for (std::size_t k = 0; k < link.shapes.size(); ++k) {
+      CollisionShape& s = link.shapes[k];
       s.shape = link.padding > 0.0 ? s.unpadded.inflated(link.padding) : s.unpadded;
-      if (s.element_hull_unpadded) {
+      if (s.element_hull_unpadded && s.piece > 0) {
+        s.element_hull = link.shapes[k - 1].element_hull;  // the element's, made at piece 0
+      } else if (s.element_hull_unpadded) {
         const Shape hull(*s.element_hull_unpadded);
         s.element_hull =
             std::make_shared<const Shape>(link.padding > 0.0 ? hull.inflated(link.padding) : hull);

@@ -171,26 +171,31 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
   }
   first_shape[static_cast<std::size_t>(n)] = static_cast<int>(shapes_.size());
   shape_begin_ = first_shape;
+  // The ball enclosing the balls of shapes_[begin, end) (one link's: their centres share its
+  // frame), about the middle of their centres' bounding box.
+  const auto enclosing_ball = [&](int begin, int end, Eigen::Vector3d* center, double* radius) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d hi = -lo;
+    for (int sh = begin; sh < end; ++sh) {
+      lo = lo.cwiseMin(shapes_[static_cast<std::size_t>(sh)].center);
+      hi = hi.cwiseMax(shapes_[static_cast<std::size_t>(sh)].center);
+    }
+    *center = 0.5 * (lo + hi);
+    *radius = 0.0;
+    for (int sh = begin; sh < end; ++sh) {
+      const RobotShape& rs = shapes_[static_cast<std::size_t>(sh)];
+      *radius = std::max(*radius, (rs.center - *center).norm() + rs.radius);
+    }
+  };
   // Pairs of links with geometry only: quadratic in those, not in all links. A link's ball
   // encloses its shapes' balls (about the middle of their centres' bounding box): a link pair
   // whose balls are apart needs none of its shape pairs (decomposed links have many).
   const std::vector<int> solid = model_->links_with_geometry();
   for (int l : solid) {
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-    Eigen::Vector3d hi = -lo;
-    for (int sh = first_shape[static_cast<std::size_t>(l)];
-         sh < first_shape[static_cast<std::size_t>(l) + 1]; ++sh) {
-      lo = lo.cwiseMin(shapes_[static_cast<std::size_t>(sh)].center);
-      hi = hi.cwiseMax(shapes_[static_cast<std::size_t>(sh)].center);
-    }
-    const Eigen::Vector3d center = 0.5 * (lo + hi);
-    double radius = 0.0;
-    for (int sh = first_shape[static_cast<std::size_t>(l)];
-         sh < first_shape[static_cast<std::size_t>(l) + 1]; ++sh) {
-      const RobotShape& rs = shapes_[static_cast<std::size_t>(sh)];
-      radius = std::max(radius, (rs.center - center).norm() + rs.radius);
-    }
-    link_balls_.push_back({l, center, radius});
+    LinkBall ball{l, Eigen::Vector3d::Zero(), 0.0};
+    enclosing_ball(first_shape[static_cast<std::size_t>(l)],
+                   first_shape[static_cast<std::size_t>(l) + 1], &ball.center, &ball.radius);
+    link_balls_.push_back(ball);
   }
   for (std::size_t i = 0; i < solid.size(); ++i) {
     for (std::size_t k = i + 1; k < solid.size(); ++k) {
@@ -250,19 +255,8 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
   for (ShapeGroup& group : groups_) {  // one link's group: a ball fixed in the link's frame
     const int link = shapes_[static_cast<std::size_t>(group.begin)].link;
     if (shapes_[static_cast<std::size_t>(group.end - 1)].link != link) continue;
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-    Eigen::Vector3d hi = -lo;
-    for (int sh = group.begin; sh < group.end; ++sh) {
-      lo = lo.cwiseMin(shapes_[static_cast<std::size_t>(sh)].center);
-      hi = hi.cwiseMax(shapes_[static_cast<std::size_t>(sh)].center);
-    }
     group.link = link;
-    group.local_center = 0.5 * (lo + hi);
-    group.radius = 0.0;
-    for (int sh = group.begin; sh < group.end; ++sh) {
-      const RobotShape& rs = shapes_[static_cast<std::size_t>(sh)];
-      group.radius = std::max(group.radius, (rs.center - group.local_center).norm() + rs.radius);
-    }
+    enclosing_ball(group.begin, group.end, &group.local_center, &group.radius);
   }
   for (LinkBall& ball : link_balls_) {
     const int begin = first_shape[static_cast<std::size_t>(ball.link)];
@@ -442,6 +436,11 @@ double CollisionChecker::box_gap(const ObstacleBox& box, const Eigen::Vector3d& 
   return (outside > 0.0 ? outside : excess.maxCoeff()) - radius;
 }
 
+const Shape& CollisionChecker::shape_of(int shape) const {
+  const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
+  return model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape;
+}
+
 const Shape& CollisionChecker::bounding_shape(int shape) const {
   const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
   const CollisionShape& cs = model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)];
@@ -486,6 +485,8 @@ bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_po
     }
   }
   for (const SelfBlock& block : self_blocks_) {
+    // Non-zero when the pieces meeting the other link's hull are marked with it (below).
+    std::uint64_t mark = 0;
     if (block.end - block.begin > 1) {
       const double reach = link_balls_[static_cast<std::size_t>(block.link_a)].radius +
                            link_balls_[static_cast<std::size_t>(block.link_b)].radius;
@@ -506,18 +507,14 @@ bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_po
         if (block.end - block.begin > kGroupSize) {
           // Many piece pairs: each piece against the other link's hull first; only pieces
           // meeting it can meet a piece of that link. A mark is this query and block's stamp.
-          const std::uint64_t mark =
-              (s.stamp << 20) + static_cast<std::uint64_t>(&block - self_blocks_.data()) + 1;
+          mark = (s.stamp << 20) + static_cast<std::uint64_t>(&block - self_blocks_.data()) + 1;
           bool any_a = false, any_b = false;
           const auto mark_pieces = [&](int link_ball, const Shape& other,
                                        const Eigen::Isometry3d& other_pose, bool* any) {
             const int l = link_balls_[static_cast<std::size_t>(link_ball)].link;
-            const int begin = shape_begin_[static_cast<std::size_t>(l)];
-            const int end = shape_begin_[static_cast<std::size_t>(l) + 1];
-            for (int sh = begin; sh < end; ++sh) {
-              const RobotShape& rs = shapes_[static_cast<std::size_t>(sh)];
-              if (intersect(model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape,
-                            shape_pose(sh, s), other, other_pose)) {
+            for (int sh = shape_begin_[static_cast<std::size_t>(l)];
+                 sh < shape_begin_[static_cast<std::size_t>(l) + 1]; ++sh) {
+              if (intersect(shape_of(sh), shape_pose(sh, s), other, other_pose)) {
                 s.meets_other[static_cast<std::size_t>(sh)] = mark;
                 *any = true;
               }
@@ -527,41 +524,19 @@ bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_po
           if (!any_a) continue;
           mark_pieces(block.link_b, hull_a, pose_a, &any_b);
           if (!any_b) continue;
-          for (int k = block.begin; k < block.end; ++k) {
-            const SelfPair& p = self_pairs_[static_cast<std::size_t>(k)];
-            if (s.meets_other[static_cast<std::size_t>(p.a)] != mark ||
-                s.meets_other[static_cast<std::size_t>(p.b)] != mark) {
-              continue;
-            }
-            if (intersect(model_->link(shapes_[static_cast<std::size_t>(p.a)].link)
-                              .shapes[static_cast<std::size_t>(
-                                  shapes_[static_cast<std::size_t>(p.a)].shape)]
-                              .shape,
-                          shape_pose(p.a, s),
-                          model_->link(shapes_[static_cast<std::size_t>(p.b)].link)
-                              .shapes[static_cast<std::size_t>(
-                                  shapes_[static_cast<std::size_t>(p.b)].shape)]
-                              .shape,
-                          shape_pose(p.b, s))) {
-              return false;
-            }
-          }
-          continue;
         }
       }
     }
     for (int k = block.begin; k < block.end; ++k) {
       const SelfPair& p = self_pairs_[static_cast<std::size_t>(k)];
-      const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
-      const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
-      const double reach = a.radius + b.radius;
-      if ((center(p.a, s) - center(p.b, s)).squaredNorm() > reach * reach) {
-        continue;
+      if (mark != 0 && (s.meets_other[static_cast<std::size_t>(p.a)] != mark ||
+                        s.meets_other[static_cast<std::size_t>(p.b)] != mark)) {
+        continue;  // one of the two pieces is clear of the other link's hull
       }
-      if (intersect(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
-                    shape_pose(p.a, s),
-                    model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape,
-                    shape_pose(p.b, s))) {
+      const double reach = shapes_[static_cast<std::size_t>(p.a)].radius +
+                           shapes_[static_cast<std::size_t>(p.b)].radius;
+      if ((center(p.a, s) - center(p.b, s)).squaredNorm() > reach * reach) continue;
+      if (intersect(shape_of(p.a), shape_pose(p.a, s), shape_of(p.b), shape_pose(p.b, s))) {
         return false;
       }
     }

@@ -134,6 +134,8 @@ class CollisionChecker {
     // is one decomposed mesh, shapes_[bound] itself when it is one shape; -1 otherwise.
     int bound = -1;
   };
+  /// Robot shape `shape`'s padded shape (the model's).
+  const Shape& shape_of(int shape) const;
   /// The shape containing robot shape `shape`'s group or link (see `bound` above).
   const Shape& bounding_shape(int shape) const;
   struct EnvironmentPair {
