@@ -2,7 +2,7 @@
 // start, and a quick throughput measurement. Run: scripts/demo.sh
 #include <chrono>
 #include <cstdio>
-#include <hullcheck/hullcheck.hpp>
+#include <hullcheck/core.hpp>
 #include <random>
 #include <string>
 #include <vector>

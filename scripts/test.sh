@@ -4,7 +4,8 @@
 #  2. Release build with warnings as errors: GoogleTest suites and benchmark smoke runs (ctest),
 #  3. the same tests built with AddressSanitizer + UndefinedBehaviorSanitizer,
 #  4. multi-threaded planning (OmplThreads.*) built with ThreadSanitizer,
-#  5. install into a temporary prefix and build a consumer with find_package(hullcheck),
+#  5. install into a temporary prefix and build two consumers with find_package(hullcheck):
+#     one of every layer, one of hullcheck::core alone (no OMPL on its include path),
 #  6. the libFuzzer targets of the readers (clang, ASan + UBSan): every regression input
 #     replayed, then a few seconds of fuzzing each (scripts/fuzz.sh; long runs: see README).
 set -euo pipefail
@@ -56,6 +57,11 @@ cmake --install build/ci-release --prefix "$prefix" >/dev/null
 cmake -S tests/install_consumer -B build/ci-consumer -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
 cmake --build build/ci-consumer -j"$jobs"
 ./build/ci-consumer/hullcheck_consumer
+# hullcheck::core alone: no OMPL (nor loader) packages looked for, no OMPL header reachable.
+cmake -S tests/install_consumer/core_only -B build/ci-core-consumer -DCMAKE_PREFIX_PATH="$prefix" \
+  >/dev/null
+cmake --build build/ci-core-consumer -j"$jobs"
+./build/ci-core-consumer/hullcheck_core_consumer
 rm -rf "$prefix"
 
 stage "libFuzzer targets: regressions replayed, then 5 s of fuzzing each"

@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <initializer_list>
 #include <random>
 #include <string>

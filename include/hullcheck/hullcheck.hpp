@@ -1,14 +1,9 @@
-// hullcheck: exact proximity queries (collision, distance, penetration) between convex shapes.
-// One include for the whole proximity core.
+// Umbrella header of all of hullcheck: the core, robot, scene and OMPL layers (target
+// hullcheck::hullcheck). A program using only the proximity queries includes
+// <hullcheck/core.hpp> and links hullcheck::core, which needs neither OMPL nor the loaders.
 #pragma once
 
-#include <hullcheck/convex_hull.hpp>
-#include <hullcheck/errors.hpp>
-#include <hullcheck/limits.hpp>
-#include <hullcheck/pose.hpp>
-#include <hullcheck/primitives.hpp>
-#include <hullcheck/proximity_pair.hpp>
-#include <hullcheck/queries.hpp>
-#include <hullcheck/query_options.hpp>
-#include <hullcheck/query_result.hpp>
-#include <hullcheck/shape.hpp>
+#include <hullcheck/core.hpp>
+#include <hullcheck/ompl.hpp>
+#include <hullcheck/robot.hpp>
+#include <hullcheck/scene.hpp>

@@ -1,6 +1,6 @@
-// Umbrella header of hullcheck's OMPL integration: scenes, the collision checker, the joint
-// state space, validity checker, guaranteed motion validator, clearance objectives and path
-// optimization.
+// Umbrella header of hullcheck's OMPL layer: the joint state space, validity checker,
+// guaranteed motion validator, clearance objectives and path optimization (and the scene,
+// robot and core layers below them).
 #pragma once
 
 #include <hullcheck/ompl/joint_state_space.hpp>
@@ -9,8 +9,4 @@
 #include <hullcheck/ompl/path_optimization.hpp>
 #include <hullcheck/ompl/planning_setup.hpp>
 #include <hullcheck/ompl/state_validity_checker.hpp>
-#include <hullcheck/robot.hpp>
-#include <hullcheck/scene/clearance_gradient.hpp>
-#include <hullcheck/scene/collision_checker.hpp>
-#include <hullcheck/scene/motion_plan_request.hpp>
-#include <hullcheck/scene/planning_scene.hpp>
+#include <hullcheck/scene.hpp>

@@ -2,7 +2,7 @@
 // allowed-collision matrices and self-collision queries.
 #pragma once
 
-#include <hullcheck/hullcheck.hpp>
+#include <hullcheck/core.hpp>
 #include <hullcheck/robot/allowed_collision_matrix.hpp>
 #include <hullcheck/robot/collision_matrix_generation.hpp>
 #include <hullcheck/robot/convex_decomposition.hpp>

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 
 namespace hullcheck::cli {
 namespace {

@@ -3,7 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <fstream>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <sstream>
 
 namespace hullcheck::cli {

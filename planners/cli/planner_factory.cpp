@@ -35,7 +35,7 @@
 #include <algorithm>
 #include <cctype>
 #include <functional>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/ompl/objectives.hpp>
 #include <map>
 

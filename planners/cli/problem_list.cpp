@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <regex>
 #include <sstream>
 

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/ompl/joint_state_space.hpp>
 #include <set>
 #include <vector>

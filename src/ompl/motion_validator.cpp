@@ -1,6 +1,6 @@
 #include <atomic>
 #include <cmath>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/ompl/motion_validator.hpp>
 
 namespace hullcheck {

@@ -2,7 +2,7 @@
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 
 #include <cmath>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/ompl/objectives.hpp>
 
 namespace hullcheck {

@@ -1,7 +1,7 @@
 #include <ompl/geometric/PathSimplifier.h>
 
 #include <algorithm>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/ompl/path_optimization.hpp>
 #include <hullcheck/scene/clearance_gradient.hpp>
 #include <limits>

@@ -1,6 +1,6 @@
 #include <ompl/base/DiscreteMotionValidator.h>
 
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/ompl/planning_setup.hpp>
 
 namespace hullcheck {

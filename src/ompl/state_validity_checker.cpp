@@ -1,4 +1,4 @@
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/ompl/state_validity_checker.hpp>
 
 namespace hullcheck {

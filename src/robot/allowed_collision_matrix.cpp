@@ -1,5 +1,5 @@
 #include <algorithm>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/robot/allowed_collision_matrix.hpp>
 #include <hullcheck/robot/robot_model.hpp>
 #include <hullcheck/robot/srdf.hpp>

@@ -1,5 +1,5 @@
 #include <cmath>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/robot/collision_matrix_generation.hpp>
 #include <hullcheck/robot/robot_model.hpp>
 #include <hullcheck/robot/self_collision.hpp>

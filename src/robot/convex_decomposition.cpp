@@ -1,7 +1,7 @@
 #include <algorithm>
 #include <cmath>
-#include <hullcheck/convex_hull.hpp>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/convex_hull.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/robot/convex_decomposition.hpp>
 #include <limits>
 #include <map>
@@ -11,14 +11,13 @@
 #include <sstream>
 #include <tuple>
 
-#include "../qhull_wrapper.hpp"
 #include "mesh_distance.hpp"
 
 // Contents:
 //   Cell, clip_triangle        - the boxes the mesh is cut into, a triangle's part in one
 //   Piece, make_piece           - the mesh's part in a cell and its hull
 //   measure                     - the proven tightness bound of a piece's hull
-//   hull_volume, best_cut       - choosing the plane that splits a piece
+//   best_cut                    - choosing the plane that splits a piece
 //   decompose_mesh              - the greedy loop
 
 namespace hullcheck {
@@ -247,30 +246,6 @@ void measure(MeshView& view, Piece* piece, bool stop_early) {
   piece->bound = bound;
 }
 
-// Volume of the hull of `points` (0 when flat or smaller than 4 points).
-double hull_volume(const std::vector<Eigen::Vector3d>& points) {
-  if (points.size() < 4) return 0.0;
-  std::vector<double> coords;
-  coords.reserve(3 * points.size());
-  for (const Eigen::Vector3d& p : points) coords.insert(coords.end(), {p.x(), p.y(), p.z()});
-  detail::QhullOutput out;
-  try {
-    out = detail::run_qhull(3, coords);
-  } catch (const std::exception&) {
-    return 0.0;  // flat or degenerate: no volume
-  }
-  double volume = 0.0;
-  const Eigen::Vector3d& o = points[0];
-  for (const auto& f : out.facets) {
-    if (f[2] < 0) return 0.0;
-    const Eigen::Vector3d& a = points[static_cast<std::size_t>(f[0])];
-    const Eigen::Vector3d& b = points[static_cast<std::size_t>(f[1])];
-    const Eigen::Vector3d& c = points[static_cast<std::size_t>(f[2])];
-    volume += (a - o).dot((b - o).cross(c - o));
-  }
-  return std::abs(volume) / 6.0;
-}
-
 // A cut of a piece's cell: the plane x[axis] = position.
 struct Cut {
   int axis = -1;
@@ -307,8 +282,10 @@ Cut best_cut(MeshView& view, const Piece& piece) {
       Cell left = piece.cell, right = piece.cell;
       left.hi[axis] = position;
       right.lo[axis] = position;
-      const double left_volume = hull_volume(cell_points(view, piece.triangles, left, nullptr));
-      const double right_volume = hull_volume(cell_points(view, piece.triangles, right, nullptr));
+      const double left_volume =
+          convex_hull_volume(cell_points(view, piece.triangles, left, nullptr));
+      const double right_volume =
+          convex_hull_volume(cell_points(view, piece.triangles, right, nullptr));
       // A cut leaving one side flat (only points on the plane) gains nothing and would make a
       // flat piece (qhull's joggled fallback gives flat sets a tiny volume, hence the margin).
       const double thin = 1e-9 * (hi - lo).prod();
@@ -362,7 +339,7 @@ void merge_pieces(MeshView& view, std::vector<std::unique_ptr<Piece>>* pieces, i
   std::map<std::pair<int, int>, double> joint_volume;
   const auto good = [&](const Piece& p) { return !p.refuted && p.bound <= view.tolerance; };
   for (auto& p : *pieces) {
-    if (p->volume < 0.0) p->volume = hull_volume(p->points);
+    if (p->volume < 0.0) p->volume = convex_hull_volume(p->points);
   }
   const auto joined = [](const Piece& a, const Piece& b) {
     std::vector<Eigen::Vector3d> points = a.points;
@@ -382,7 +359,7 @@ void merge_pieces(MeshView& view, std::vector<std::unique_ptr<Piece>>* pieces, i
         if (!good(b) || tried.count(key) != 0 || !adjacent(a, b)) continue;
         auto it = joint_volume.find(key);
         if (it == joint_volume.end()) {
-          it = joint_volume.emplace(key, hull_volume(joined(a, b))).first;
+          it = joint_volume.emplace(key, convex_hull_volume(joined(a, b))).first;
         }
         const double added = it->second - a.volume - b.volume;
         if (added < best) {
@@ -411,7 +388,7 @@ void merge_pieces(MeshView& view, std::vector<std::unique_ptr<Piece>>* pieces, i
     merged->hull = std::make_shared<ConvexHull>(merged->points);
     measure(view, merged.get(), true);
     if (!good(*merged)) continue;
-    merged->volume = hull_volume(merged->points);
+    merged->volume = convex_hull_volume(merged->points);
     merged->id = (*next_id)++;
     (*pieces)[bi] = std::move(merged);
     pieces->erase(pieces->begin() + static_cast<std::ptrdiff_t>(bj));

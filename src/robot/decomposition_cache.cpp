@@ -6,8 +6,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <hullcheck/errors.hpp>
-#include <hullcheck/limits.hpp>
+#include <hullcheck/core/errors.hpp>
+#include <hullcheck/core/limits.hpp>
 #include <hullcheck/robot/decomposition_cache.hpp>
 #include <sstream>
 #include <thread>

@@ -1,7 +1,7 @@
 // Forward kinematics of RobotModel: the load-time plan (fixed joints folded into constant
 // offsets) and the allocation-free evaluation.
 #include <cmath>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/robot/robot_model.hpp>
 #include <sstream>
 

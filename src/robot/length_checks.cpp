@@ -1,10 +1,9 @@
-#include "length_checks.hpp"
-
 #include <cmath>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
+#include <hullcheck/robot/length_checks.hpp>
 #include <sstream>
 
-namespace hullcheck::detail {
+namespace hullcheck {
 
 void check_length(double value, const std::string& what) {
   if (std::isfinite(value) && std::abs(value) <= kMaxLoadedLength) return;
@@ -27,4 +26,4 @@ void check_lengths(const Eigen::Vector3d& v, const std::string& what) {
   for (int i = 0; i < 3; ++i) check_length(v[i], what + " " + kAxis[i]);
 }
 
-}  // namespace hullcheck::detail
+}  // namespace hullcheck

@@ -12,7 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/robot/mesh_file.hpp>
 #include <limits>
 #include <map>

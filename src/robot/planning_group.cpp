@@ -1,5 +1,5 @@
 #include <algorithm>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/robot/planning_group.hpp>
 #include <set>
 

@@ -1,6 +1,6 @@
 #include <cstdlib>
 #include <filesystem>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/robot/resource_path.hpp>
 #include <sstream>
 #include <system_error>

@@ -5,14 +5,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/robot/decomposition_cache.hpp>
+#include <hullcheck/robot/length_checks.hpp>
 #include <hullcheck/robot/mesh_file.hpp>
 #include <hullcheck/robot/robot_model.hpp>
 #include <sstream>
 #include <tuple>
 
-#include "length_checks.hpp"
 #include "urdf_messages.hpp"
 #include "urdf_tree.hpp"
 
@@ -116,8 +116,8 @@ const char* geometry_tag(int type) {
 // Throws unless every vertex coordinate is within the loaders' length range (m).
 void check_mesh_extent(const std::vector<Eigen::Vector3d>& vertices, const std::string& what) {
   for (const Eigen::Vector3d& v : vertices) {
-    if (v.array().abs().maxCoeff() > detail::kMaxLoadedLength) {
-      detail::check_lengths(v, what + ": vertex");
+    if (v.array().abs().maxCoeff() > kMaxLoadedLength) {
+      check_lengths(v, what + ": vertex");
     }
   }
 }
@@ -158,28 +158,28 @@ class Loader {
                        0};
     out.element = element;
     out.origin = to_isometry(collision.origin);
-    detail::check_lengths(out.origin.translation(), where + ": <collision><origin xyz>");
+    check_lengths(out.origin.translation(), where + ": <collision><origin xyz>");
     const urdf::Geometry& g = *collision.geometry;
     try {
       switch (g.type) {
         case urdf::Geometry::SPHERE: {
           const auto& s = static_cast<const urdf::Sphere&>(g);
-          detail::check_length(s.radius, where + ": <sphere radius>");
+          check_length(s.radius, where + ": <sphere radius>");
           out.unpadded = Sphere(s.radius);
           out.source = "sphere";
           break;
         }
         case urdf::Geometry::BOX: {
           const auto& b = static_cast<const urdf::Box&>(g);
-          detail::check_lengths(Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z), where + ": <box size>");
+          check_lengths(Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z), where + ": <box size>");
           out.unpadded = Box(b.dim.x, b.dim.y, b.dim.z);
           out.source = "box";
           break;
         }
         case urdf::Geometry::CYLINDER: {
           const auto& c = static_cast<const urdf::Cylinder&>(g);
-          detail::check_length(c.radius, where + ": <cylinder radius>");
-          detail::check_length(c.length, where + ": <cylinder length>");
+          check_length(c.radius, where + ": <cylinder radius>");
+          check_length(c.length, where + ": <cylinder length>");
           out.unpadded = Cylinder(c.radius, c.length);
           out.source = "cylinder";
           break;
@@ -343,7 +343,7 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const std::strin
       joint.name = uj.name;
       joint.parent_link = link_id;
       joint.origin = to_isometry(uj.parent_to_joint_origin_transform);
-      detail::check_lengths(joint.origin.translation(), jwhere + ": <origin xyz>");
+      check_lengths(joint.origin.translation(), jwhere + ": <origin xyz>");
       switch (uj.type) {
         case urdf::Joint::REVOLUTE:
           joint.type = JointType::kRevolute;
@@ -383,14 +383,14 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const std::strin
           throw InputError(jwhere + ": <limit> lower must be <= upper, both finite");
         }
         const char* unit = joint.type == JointType::kRevolute ? "rad" : "m";
-        detail::check_joint_value(joint.lower, jwhere + ": <limit lower>", unit);
-        detail::check_joint_value(joint.upper, jwhere + ": <limit upper>", unit);
+        check_joint_value(joint.lower, jwhere + ": <limit lower>", unit);
+        check_joint_value(joint.upper, jwhere + ": <limit upper>", unit);
       }
       if (uj.limits && uj.limits->velocity > 0.0) joint.max_velocity = uj.limits->velocity;
       if (uj.mimic && joint.type != JointType::kFixed) {
-        detail::check_joint_value(uj.mimic->multiplier, jwhere + ": <mimic multiplier>", "");
-        detail::check_joint_value(uj.mimic->offset, jwhere + ": <mimic offset>",
-                                  joint.type == JointType::kPrismatic ? "m" : "rad");
+        check_joint_value(uj.mimic->multiplier, jwhere + ": <mimic multiplier>", "");
+        check_joint_value(uj.mimic->offset, jwhere + ": <mimic offset>",
+                          joint.type == JointType::kPrismatic ? "m" : "rad");
         mimics[joint.name] = {uj.mimic->joint_name, uj.mimic};
       }
       const int joint_id = static_cast<int>(model.joints_.size());

@@ -1,6 +1,6 @@
 #include <algorithm>
-#include <hullcheck/errors.hpp>
-#include <hullcheck/queries.hpp>
+#include <hullcheck/core/errors.hpp>
+#include <hullcheck/core/queries.hpp>
 #include <hullcheck/robot/self_collision.hpp>
 
 namespace hullcheck {

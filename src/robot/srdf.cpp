@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/robot/srdf.hpp>
 #include <iomanip>
 #include <limits>

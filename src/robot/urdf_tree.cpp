@@ -1,7 +1,7 @@
 #include "urdf_tree.hpp"
 
 #include <cstddef>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <unordered_map>
 #include <unordered_set>
 

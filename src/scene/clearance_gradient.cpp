@@ -1,4 +1,4 @@
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/scene/clearance_gradient.hpp>
 
 namespace hullcheck {

@@ -1,12 +1,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <hullcheck/errors.hpp>
-#include <hullcheck/queries.hpp>
+#include <hullcheck/core/errors.hpp>
+#include <hullcheck/core/queries.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
 #include <map>
-
-#include "../detail/query_engine.hpp"
 
 namespace hullcheck {
 namespace {
@@ -560,12 +558,11 @@ SignedDistanceResult CollisionChecker::pair_distance_below(std::size_t i, double
   const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
   const WarmStartGrid& grid = warm_grids_[i - n_env];
   if (grid.dims >= 0 && s.q != nullptr) {
-    // Poses from forward kinematics of a checked configuration: finite.
-    detail::WarmStart warm = grid.at(s.q);
-    return detail::to_signed_distance_result(detail::query(
+    WarmStart warm = grid.at(s.q);
+    return signed_distance_below(
         model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape, shape_pose(p.a, s),
         model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape, shape_pose(p.b, s),
-        detail::QueryKind::kSignedDistance, QueryOptions{}, &warm, cutoff));
+        cutoff, warm);
   }
   return signed_distance_below(model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape,
                                shape_pose(p.a, s),

@@ -1,7 +1,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/scene/motion_plan_request.hpp>
 
 namespace hullcheck {

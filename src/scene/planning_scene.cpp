@@ -1,12 +1,11 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <hullcheck/errors.hpp>
+#include <hullcheck/core/errors.hpp>
+#include <hullcheck/robot/length_checks.hpp>
 #include <hullcheck/scene/planning_scene.hpp>
 #include <map>
 #include <sstream>
-
-#include "../robot/length_checks.hpp"
 
 namespace hullcheck {
 namespace {
@@ -48,12 +47,12 @@ class SceneReader {
     }
   }
 
-  // A length, m: finite and at most detail::kMaxLoadedLength in magnitude.
+  // A length, m: finite and at most kMaxLoadedLength in magnitude.
   double length(const YAML::Node& n, const std::string& object, const std::string& what) const {
     const double v = number(n, object, what);
-    if (std::abs(v) > detail::kMaxLoadedLength) {
+    if (std::abs(v) > kMaxLoadedLength) {
       std::ostringstream msg;
-      msg << what << " is " << v << ", above the " << detail::kMaxLoadedLength
+      msg << what << " is " << v << ", above the " << kMaxLoadedLength
           << " m accepted for a length";
       fail(object, msg.str());
     }

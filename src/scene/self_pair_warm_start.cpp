@@ -1,21 +1,22 @@
 // CollisionChecker's warm-start grids for self pairs moved by at most two configuration values.
 #include <algorithm>
 #include <cmath>
+#include <hullcheck/core/queries.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
-
-#include "../detail/query_engine.hpp"
+#include <limits>
 
 namespace hullcheck {
 namespace {
 
 // Cells per keying value: a finer grid starts GJK nearer its answer but costs memory (one
-// detail::WarmStart, 64 bytes, per cell) and construction time (one query per cell).
+// WarmStart, 64 bytes, per cell) and construction time (one query per cell).
 constexpr int kCellsOneValue = 128;
 constexpr int kCellsTwoValues = 32;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
-const detail::WarmStart& CollisionChecker::WarmStartGrid::at(const double* q) const {
+const WarmStart& CollisionChecker::WarmStartGrid::at(const double* q) const {
   int cell = 0;
   for (int d = 0; d < dims; ++d) {
     double x = q[variables[d]];
@@ -92,11 +93,11 @@ void CollisionChecker::build_warm_start_grids(const std::vector<std::vector<bool
                                    : lower[grid.variables[d]];
       }
       model.compute_link_poses(q, poses);
-      detail::WarmStart& start = grid.starts[cell];
+      WarmStart& start = grid.starts[cell];
       const Eigen::Isometry3d pose_a = poses[static_cast<std::size_t>(a.link)] * origin_a;
-      const detail::Answer answer = detail::query(
-          shape_a, pose_a, shape_b, poses[static_cast<std::size_t>(b.link)] * origin_b,
-          detail::QueryKind::kSignedDistance, QueryOptions{}, &start);
+      const SignedDistanceResult answer = signed_distance_below(
+          shape_a, pose_a, shape_b, poses[static_cast<std::size_t>(b.link)] * origin_b, kInfinity,
+          start);
       // The direction: minus the normal from A to B (A's frame), for overlapping shapes too
       // (EPA's), so that it also gives the slab bound's direction.
       if (answer.normal.squaredNorm() > 0.0) {

@@ -24,7 +24,7 @@
 #include <cstring>
 #include <deque>
 #include <fstream>
-#include <hullcheck/hullcheck.hpp>
+#include <hullcheck/core.hpp>
 #include <iomanip>
 #include <iostream>
 #include <limits>

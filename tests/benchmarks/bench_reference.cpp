@@ -7,7 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
-#include <hullcheck/hullcheck.hpp>
+#include <hullcheck/core.hpp>
 #include <vector>
 
 #include "oracles.hpp"

@@ -1,5 +1,5 @@
 // hullcheck's free functions behind the common interface (default QueryOptions).
-#include <hullcheck/hullcheck.hpp>
+#include <hullcheck/core.hpp>
 #include <unordered_map>
 
 #include "peers.hpp"

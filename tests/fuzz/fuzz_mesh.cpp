@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cstring>
-#include <hullcheck/convex_hull.hpp>
+#include <hullcheck/core/convex_hull.hpp>
 #include <hullcheck/robot/convex_decomposition.hpp>
 #include <hullcheck/robot/mesh_file.hpp>
 #include <string>

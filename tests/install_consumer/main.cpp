@@ -1,7 +1,7 @@
 // Smallest program using an installed hullcheck; exits non-zero on a wrong answer.
 #include <cmath>
 #include <cstdio>
-#include <hullcheck/hullcheck.hpp>
+#include <hullcheck/core.hpp>
 #include <hullcheck/robot.hpp>
 #include <memory>
 

@@ -4,10 +4,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <hullcheck/core/shape.hpp>
 #include <hullcheck/robot/convex_decomposition.hpp>
 #include <hullcheck/robot/mesh_file.hpp>
 #include <hullcheck/robot/resource_path.hpp>
-#include <hullcheck/shape.hpp>
 #include <limits>
 #include <map>
 #include <memory>

@@ -2,7 +2,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
-#include <hullcheck/query_result.hpp>
+#include <hullcheck/core/query_result.hpp>
 #include <hullcheck/robot/allowed_collision_matrix.hpp>
 #include <hullcheck/robot/robot_model.hpp>
 #include <limits>

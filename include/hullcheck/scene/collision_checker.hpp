@@ -2,8 +2,8 @@
 #pragma once
 
 #include <Eigen/Geometry>
-#include <hullcheck/proximity_pair.hpp>
-#include <hullcheck/query_result.hpp>
+#include <hullcheck/core/proximity_pair.hpp>
+#include <hullcheck/core/query_result.hpp>
 #include <hullcheck/robot/allowed_collision_matrix.hpp>
 #include <hullcheck/robot/robot_model.hpp>
 #include <hullcheck/scene/planning_scene.hpp>
@@ -163,8 +163,8 @@ class CollisionChecker {
     double cells_per_unit[2] = {0, 0};  // cells per radian (or metre)
     int cells[2] = {1, 1};
     bool wraps[2] = {false, false};  // continuous joint: the grid covers one turn
-    std::vector<detail::WarmStart> starts;
-    const detail::WarmStart& at(const double* q) const;
+    std::vector<WarmStart> starts;
+    const WarmStart& at(const double* q) const;
   };
   /// Fills warm_grids_; above[l][j]: joint j is on the path from the root to link l.
   void build_warm_start_grids(const std::vector<std::vector<bool>>& above);

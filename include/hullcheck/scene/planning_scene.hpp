@@ -2,8 +2,8 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <hullcheck/core/shape.hpp>
 #include <hullcheck/robot/robot_model.hpp>
-#include <hullcheck/shape.hpp>
 #include <string>
 #include <utility>
 #include <vector>
