@@ -5,5 +5,6 @@
 #include <hullcheck/robot.hpp>
 #include <hullcheck/scene/clearance_gradient.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
+#include <hullcheck/scene/collision_matrix_generation.hpp>
 #include <hullcheck/scene/motion_plan_request.hpp>
 #include <hullcheck/scene/planning_scene.hpp>

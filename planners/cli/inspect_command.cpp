@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <hullcheck/scene/collision_checker.hpp>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -138,10 +139,10 @@ void print_state(const RobotModel& model, const Eigen::VectorXd& q, const Srdf& 
   const AllowedCollisionMatrix acm = AllowedCollisionMatrix::from_srdf(model, srdf, &warnings);
   for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
   std::shared_ptr<const RobotModel> shared(&model, [](const RobotModel*) {});
-  SelfCollisionChecker checker(shared, acm);
+  const CollisionChecker checker(shared, acm);  // no scene: the robot against itself
   std::vector<std::pair<int, int>> colliding;
   checker.colliding_link_pairs_at(poses, colliding);
-  const LinkPairProximity closest = checker.min_distance_at(poses);
+  const ClearanceResult closest = checker.clearance_at(poses);
   std::cout << "\nself-collision (" << checker.checked_link_pairs().size()
             << " link pairs checked, " << acm.allowed_pair_count() << " allowed): ";
   if (colliding.empty()) {
@@ -153,8 +154,8 @@ void print_state(const RobotModel& model, const Eigen::VectorXd& q, const Srdf& 
     }
   }
   if (closest.link_a >= 0) {
-    std::printf("closest pair: %s - %s, signed distance %.9g m\n", closest.link_a_name.data(),
-                closest.link_b_name.data(), closest.distance);
+    std::printf("closest pair: %s - %s, signed distance %.9g m\n", closest.name_a.data(),
+                closest.name_b.data(), closest.distance);
   }
 }
 

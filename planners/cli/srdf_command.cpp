@@ -1,5 +1,6 @@
 #include "srdf_command.hpp"
 
+#include <hullcheck/scene/collision_matrix_generation.hpp>
 #include <iostream>
 #include <memory>
 #include <sstream>

@@ -28,7 +28,7 @@ const WarmStart& CollisionChecker::WarmStartGrid::at(const double* q) const {
   return starts[static_cast<std::size_t>(cell)];
 }
 
-void CollisionChecker::build_warm_start_grids(const std::vector<std::vector<bool>>& above) {
+void CollisionChecker::build_warm_start_grids() {
   const RobotModel& model = *model_;
   warm_grids_.assign(self_pairs_.size(), WarmStartGrid{});
   const Eigen::VectorXd lower = model.lower_limits();
@@ -46,23 +46,15 @@ void CollisionChecker::build_warm_start_grids(const std::vector<std::vector<bool
     }
     // The values that move one link relative to the other: drivers of the movable joints
     // above exactly one of them.
-    std::vector<int> keys;
-    for (int j = 0; j < static_cast<int>(model.joints().size()); ++j) {
-      if (model.joint(j).type == JointType::kFixed) continue;
-      if (above[static_cast<std::size_t>(a.link)][static_cast<std::size_t>(j)] ==
-          above[static_cast<std::size_t>(b.link)][static_cast<std::size_t>(j)]) {
-        continue;
-      }
-      const int v = model.joint(j).driver();
-      if (std::find(keys.begin(), keys.end(), v) == keys.end()) keys.push_back(v);
-    }
-    if (keys.size() > 2) continue;
+    int keys[2];
+    const int key_count = relative_drivers(a.link, b.link, 2, keys);
+    if (key_count > 2) continue;
     WarmStartGrid& grid = warm_grids_[k];
-    grid.dims = static_cast<int>(keys.size());
+    grid.dims = key_count;
     const int cells = grid.dims == 1 ? kCellsOneValue : kCellsTwoValues;
     std::size_t total = 1;
     for (int d = 0; d < grid.dims; ++d) {
-      const int v = keys[static_cast<std::size_t>(d)];
+      const int v = keys[d];
       double lo = lower[v], hi = upper[v];
       grid.wraps[d] = !std::isfinite(lo) || !std::isfinite(hi);
       if (grid.wraps[d]) {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
-#include <hullcheck/robot.hpp>
+#include <hullcheck/scene.hpp>
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/tree.hpp>
 #include <kdl_parser/kdl_parser.hpp>
@@ -131,12 +131,12 @@ void fk_kdl_chain(benchmark::State& state, const RobotCase& c) {
   set_per_item(state, qs.size());
 }
 
-std::unique_ptr<hullcheck::SelfCollisionChecker> make_checker(const RobotCase& c) {
+std::unique_ptr<hullcheck::CollisionChecker> make_checker(const RobotCase& c) {
   auto model =
       std::make_shared<const hullcheck::RobotModel>(hullcheck::RobotModel::from_urdf_file(c.urdf));
   const hullcheck::Srdf srdf =
       c.srdf.empty() ? hullcheck::Srdf{} : hullcheck::read_srdf_file(c.srdf);
-  return std::make_unique<hullcheck::SelfCollisionChecker>(
+  return std::make_unique<hullcheck::CollisionChecker>(
       model, hullcheck::AllowedCollisionMatrix::from_srdf(*model, srdf));
 }
 
@@ -146,7 +146,7 @@ void self_collision(benchmark::State& state, const RobotCase& c) {
   int colliding = 0;
   for (auto _ : state) {
     colliding = 0;
-    for (const Eigen::VectorXd& q : qs) colliding += checker->in_collision(q) ? 1 : 0;
+    for (const Eigen::VectorXd& q : qs) colliding += checker->is_valid(q) ? 0 : 1;
   }
   state.counters["colliding_fraction"] =
       static_cast<double>(colliding) / static_cast<double>(qs.size());
@@ -162,7 +162,7 @@ void self_distance(benchmark::State& state, const RobotCase& c) {
   for (auto _ : state) {
     exact = 0;
     for (const Eigen::VectorXd& q : qs) {
-      const hullcheck::LinkPairProximity p = checker->min_distance(q);
+      const hullcheck::ClearanceResult p = checker->clearance(q);
       sink += p.distance;
       exact += p.exact_queries;
     }

@@ -2,7 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <hullcheck/core.hpp>
-#include <hullcheck/robot.hpp>
+#include <hullcheck/hullcheck.hpp>
 #include <memory>
 
 int main() {
@@ -26,10 +26,10 @@ int main() {
   auto model =
       std::make_shared<hullcheck::RobotModel>(hullcheck::RobotModel::from_urdf_string(urdf, "."));
   hullcheck::AllowedCollisionMatrix acm(static_cast<int>(model->links().size()));
-  hullcheck::SelfCollisionChecker checker(model, acm);
+  const hullcheck::CollisionChecker checker(model, acm);  // no scene: self-collision only
   Eigen::VectorXd q(1);
   q[0] = 0.5;
-  const double gap = checker.min_distance(q).distance;
+  const double gap = checker.clearance(q).distance;
   std::printf("installed hullcheck: robot self distance %.12f (expected 1.5)\n", gap);
   return std::abs(d - 1.0) < 1e-12 && std::abs(gap - 1.5) < 1e-12 ? 0 : 1;
 }

@@ -2,14 +2,16 @@
 #pragma once
 
 #include <Eigen/Geometry>
-#include <hullcheck/core/proximity_pair.hpp>
+#include <cstdint>
 #include <hullcheck/core/query_result.hpp>
+#include <hullcheck/core/warm_start.hpp>
 #include <hullcheck/robot/allowed_collision_matrix.hpp>
 #include <hullcheck/robot/robot_model.hpp>
 #include <hullcheck/scene/planning_scene.hpp>
 #include <limits>
 #include <memory>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace hullcheck {
@@ -51,11 +53,12 @@ class CollisionChecker {
  public:
   /// Throws InputError when the matrix is not sized for the model. The scene's allowed pairs
   /// (link/link, link/object) are applied; entries naming neither a link nor an object of this
-  /// scene change nothing (MoveIt keeps such names in its matrices too). Builds the warm-start
+  /// scene change nothing (MoveIt keeps such names in its matrices too). With no scene (an
+  /// empty one) the checker is the robot's self-collision checker. Builds the warm-start
   /// grids of self pairs moved by at most two configuration values (32 x 32 exact queries for
   /// two values, 128 for one; about 4 ms for the Panda).
   CollisionChecker(std::shared_ptr<const RobotModel> model, AllowedCollisionMatrix matrix,
-                   PlanningScene scene);
+                   PlanningScene scene = {});
 
   const RobotModel& model() const { return *model_; }
   const PlanningScene& scene() const { return scene_; }
@@ -73,6 +76,15 @@ class CollisionChecker {
   /// configuration to look the grids up with: its queries start cold (same answers, slower).
   bool is_valid_at(const std::vector<Eigen::Isometry3d>& link_poses) const;
   ClearanceResult clearance_at(const std::vector<Eigen::Isometry3d>& link_poses) const;
+
+  /// The robot's checked link pairs (model link indices, a < b): links with geometry that the
+  /// matrix (with the scene's allowed pairs) does not allow to touch.
+  std::vector<std::pair<int, int>> checked_link_pairs() const;
+  /// Every checked link pair overlapping at the link poses (as in checked_link_pairs()),
+  /// appended to `out`; obstacles are not considered. Same broad phase and exact tests as
+  /// is_valid_at, which stops at the first overlap instead. Allocates only when `out` grows.
+  void colliding_link_pairs_at(const std::vector<Eigen::Isometry3d>& link_poses,
+                               std::vector<std::pair<int, int>>& out) const;
 
   /// Upper bound, m, on how far any point of any checked robot shape moves relative to any
   /// other checked shape or obstacle along the straight joint-space motion from q0 to q1 (each
@@ -166,11 +178,42 @@ class CollisionChecker {
     std::vector<WarmStart> starts;
     const WarmStart& at(const double* q) const;
   };
-  /// Fills warm_grids_; above[l][j]: joint j is on the path from the root to link l.
-  void build_warm_start_grids(const std::vector<std::vector<bool>>& above);
+  /// Fills warm_grids_.
+  void build_warm_start_grids();
+
+  // Robot shapes per group of the obstacle broad phase: a group's bounding ball is tested
+  // against an obstacle first, its shapes only when it is not clear (consecutive links follow
+  // the kinematic chain, so a group is a few neighbouring links, or one decomposed link).
+  static constexpr int kGroupSize = 4;
+
+  // Construction (collision_checker.cpp), in order.
+  std::vector<std::vector<bool>> apply_scene_allowed_pairs();
+  void index_shapes();
+  void build_self_pairs();
+  void build_groups();
+  void build_environment_pairs(const std::vector<std::vector<bool>>& link_object_allowed);
+  void enclosing_ball(int begin, int end, Eigen::Vector3d* center, double* radius) const;
+  struct MotionLevers;
+  // Motion bounds' data (motion_bounds.cpp): above[l][j] is true when joint j is on the path
+  // from the root to link l; the lever arms, built once by the first call of motion_levers().
+  std::vector<std::vector<bool>> joints_above_links() const;
+  const MotionLevers& motion_levers() const;
+  void build_motion_levers(MotionLevers& out) const;
+  /// The configuration values driving the movable joints above exactly one of the two links
+  /// (those moving one relative to the other), written to keys[0..]; returns their count, or
+  /// at_most + 1 as soon as there are more than at_most.
+  int relative_drivers(int link_a, int link_b, int at_most, int* keys) const;
 
   struct Scratch;
   Scratch& scratch() const;
+  // is_valid's broad phase and exact tests (collision_verdict.cpp): does any pair of the block
+  // overlap at the placed shapes?
+  bool environment_block_overlaps(const EnvironmentBlock& block, Scratch& s) const;
+  bool self_block_overlaps(const SelfBlock& block, Scratch& s) const;
+  // Marks (s.meets_other = mark) the shapes of link ball `link_ball` meeting `other` at its
+  // pose; true when any does.
+  bool mark_pieces_meeting(int link_ball, const Shape& other, const Eigen::Isometry3d& other_pose,
+                           std::uint64_t mark, Scratch& s) const;
   void place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const;
   const Eigen::Isometry3d& shape_pose(int shape, Scratch& s) const;
   /// Centre (model frame) of robot shape `shape`'s ball at the current query's poses.
@@ -199,13 +242,12 @@ class CollisionChecker {
   std::vector<EnvironmentPair> environment_pairs_;  // grouped by block
   std::vector<ShapeGroup> groups_;
   std::vector<EnvironmentBlock> blocks_;
-  // Motion bound: per variable, the largest lever arm over the shapes it moves (m; 1 for
-  // prismatic variables, which move points by |dq|).
-  Eigen::VectorXd lever_;
   bool has_self_pairs_ = false;
-  // safe_advance: per robot shape / per self pair, the motion per unit of each variable (m).
-  Eigen::MatrixXd shape_levers_;           // shapes x variables
-  Eigen::MatrixXd self_pair_levers_;       // self pairs x variables
+  std::vector<int> link_depth_;  // per link: joints between it and the root
+  // The lever arms of motion_bound and safe_advance, built on first use (their size grows with
+  // shapes x configuration values, too large for long chains that never need them); shared by
+  // copies (they depend only on what copies share).
+  std::shared_ptr<MotionLevers> motion_levers_;
   std::vector<WarmStartGrid> warm_grids_;  // per self pair
 };
 

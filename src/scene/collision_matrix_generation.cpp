@@ -1,8 +1,8 @@
 #include <cmath>
 #include <hullcheck/core/errors.hpp>
-#include <hullcheck/robot/collision_matrix_generation.hpp>
 #include <hullcheck/robot/robot_model.hpp>
-#include <hullcheck/robot/self_collision.hpp>
+#include <hullcheck/scene/collision_checker.hpp>
+#include <hullcheck/scene/collision_matrix_generation.hpp>
 #include <memory>
 #include <random>
 #include <unordered_map>
@@ -31,14 +31,14 @@ GeneratedCollisionMatrix generate_collision_matrix(const RobotModel& model,
   std::vector<std::pair<int, int>> colliding;
 
   {  // Default configuration.
-    SelfCollisionChecker checker(shared, out.matrix);
+    const CollisionChecker checker(shared, out.matrix);
     model.compute_link_poses(model.default_configuration(), poses);
     checker.colliding_link_pairs_at(poses, colliding);
     for (const auto& [a, b] : colliding) out.matrix.allow(a, b, CollisionAllowance::kDefault);
     out.default_pose = static_cast<int>(colliding.size());
   }
 
-  SelfCollisionChecker checker(shared, out.matrix);
+  const CollisionChecker checker(shared, out.matrix);
   // Collision counts per checked pair, found by the pair's key (a < b).
   const auto key = [](int a, int b) {
     return static_cast<std::uint64_t>(a) << 32 | static_cast<std::uint64_t>(b);

@@ -1,5 +1,6 @@
-// SelfCollisionChecker: analytic answers on constructed robots, culling checked against brute
-// force on real robots, and the named states of real SRDFs free of self-collision.
+// CollisionChecker without a scene (self-collision): analytic answers on constructed robots,
+// culling checked against brute force on real robots, and the named states of real SRDFs free of
+// self-collision.
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <gtest/gtest.h>
@@ -11,7 +12,7 @@
 #include <filesystem>
 #include <hullcheck/core/errors.hpp>
 #include <hullcheck/core/queries.hpp>
-#include <hullcheck/robot.hpp>
+#include <hullcheck/scene.hpp>
 #include <memory>
 #include <random>
 #include <set>
@@ -53,20 +54,20 @@ const char* const kTwoSpheres = R"(<robot name="two_spheres">
 TEST(SelfCollision, TwoSpheresAnalytic) {
   const auto model = load_string(kTwoSpheres);
   // Every pair checked, the adjacent one included.
-  SelfCollisionChecker checker(model, AllowedCollisionMatrix(2));
+  const CollisionChecker checker(model, AllowedCollisionMatrix(2));
   ASSERT_EQ(checker.checked_link_pairs().size(), 1u);
   for (const double q : {0.5, -0.6, 0.31, 0.3 + 1e-6, 0.3 + 1e-8, 0.3 + 2e-9, 0.3 - 2e-9,
                          0.3 - 1e-8, -0.3 + 1e-8, -0.3 - 1e-8, 0.29, 0.25, -0.2, 0.1}) {
     SCOPED_TRACE(q);
     const double s = q > 0 ? 1.0 : -1.0;
     const double expected = std::abs(q) - 0.3;
-    EXPECT_EQ(checker.in_collision(q1(q)), expected < 0);
-    const LinkPairProximity p = checker.min_distance(q1(q));
+    EXPECT_EQ(!checker.is_valid(q1(q)), expected < 0);
+    const ClearanceResult p = checker.clearance(q1(q));
     EXPECT_NEAR(p.distance, expected, kTol);
     EXPECT_EQ(p.link_a, 0);
     EXPECT_EQ(p.link_b, 1);
-    EXPECT_EQ(p.link_a_name, "base");
-    EXPECT_EQ(p.link_b_name, "ball");
+    EXPECT_EQ(p.name_a, "base");
+    EXPECT_EQ(p.name_b, "ball");
     EXPECT_EQ(p.shape_a, 0);
     EXPECT_EQ(p.shape_b, 0);
     EXPECT_EQ(p.status, Status::kConverged);
@@ -80,10 +81,10 @@ TEST(SelfCollision, TwoSpheresAnalytic) {
 
 TEST(SelfCollision, AdjacencyMatrixChecksNothingOnTwoLinks) {
   const auto model = load_string(kTwoSpheres);
-  SelfCollisionChecker checker(model, AllowedCollisionMatrix::from_adjacency(*model));
+  const CollisionChecker checker(model, AllowedCollisionMatrix::from_adjacency(*model));
   EXPECT_TRUE(checker.checked_link_pairs().empty());
-  EXPECT_FALSE(checker.in_collision(q1(0.0)));  // concentric, but allowed
-  const LinkPairProximity p = checker.min_distance(q1(0.0));
+  EXPECT_FALSE(!checker.is_valid(q1(0.0)));  // concentric, but allowed
+  const ClearanceResult p = checker.clearance(q1(0.0));
   EXPECT_EQ(p.distance, std::numeric_limits<double>::infinity());
   EXPECT_EQ(p.link_a, -1);
   EXPECT_EQ(p.link_b, -1);
@@ -113,16 +114,16 @@ void check_boxes(double padding) {
   RobotLoadOptions options;
   if (padding > 0) options.link_padding["slider"] = padding;
   const auto model = load_string(kTwoBoxes, options);
-  SelfCollisionChecker checker(model, AllowedCollisionMatrix(2));
+  const CollisionChecker checker(model, AllowedCollisionMatrix(2));
   const double contact = 0.15 + padding;
   for (const double offset : {0.3, 0.01, 1e-6, 1e-8, 2e-9, -2e-9, -1e-8, -1e-6, -0.01, -0.05}) {
     const double q = contact + offset;
     SCOPED_TRACE(q);
-    EXPECT_EQ(checker.in_collision(q1(q)), offset < 0);
-    const LinkPairProximity p = checker.min_distance(q1(q));
+    EXPECT_EQ(!checker.is_valid(q1(q)), offset < 0);
+    const ClearanceResult p = checker.clearance(q1(q));
     EXPECT_NEAR(p.distance, offset, kTol);
-    EXPECT_EQ(p.link_a_name, "base");
-    EXPECT_EQ(p.link_b_name, "slider");
+    EXPECT_EQ(p.name_a, "base");
+    EXPECT_EQ(p.name_b, "slider");
     // The normal's accuracy degrades as the gap closes (tolerance / gap).
     EXPECT_LT((p.normal - Eigen::Vector3d::UnitX()).norm(), 1e-9 + 1e-9 / std::abs(offset));
     // Face against face: the witnesses lie on the facing faces, within their common patch.
@@ -164,7 +165,7 @@ TEST(SelfCollision, CylinderAnalytic) {
   const int n = static_cast<int>(model->links().size());
   AllowedCollisionMatrix acm(n);
   acm.allow(model->link_index("ball"), model->link_index("cap"), CollisionAllowance::kUser);
-  SelfCollisionChecker checker(model, acm);
+  const CollisionChecker checker(model, acm);
   const int lift = model->variable_index("lift");
   const int reach = model->variable_index("reach");
   for (const double q : {0.4, 0.16, 0.15 + 1e-8, 0.15 - 1e-8, 0.12, -0.13, -0.2}) {
@@ -173,12 +174,12 @@ TEST(SelfCollision, CylinderAnalytic) {
     config[lift] = q;
     config[reach] = 1.0;  // the cap ball far beyond the cylinder's end
     const double s = q > 0 ? 1.0 : -1.0;
-    const LinkPairProximity p = checker.min_distance(config);
+    const ClearanceResult p = checker.clearance(config);
     EXPECT_NEAR(p.distance, std::abs(q) - 0.15, kTol);
-    EXPECT_EQ(p.link_b_name, "ball");
+    EXPECT_EQ(p.name_b, "ball");
     EXPECT_LT((p.point_a - Eigen::Vector3d(0.05, 0, 0.1 * s)).norm(), kTol);
     EXPECT_LT((p.normal - Eigen::Vector3d(0, 0, s)).norm(), 1e-6);
-    EXPECT_EQ(checker.in_collision(config), std::abs(q) < 0.15);
+    EXPECT_EQ(!checker.is_valid(config), std::abs(q) < 0.15);
   }
   // The flat end at x = 0.2: the cap ball at x = reach, gap reach - 0.25.
   for (const double r : {0.3, 0.26, 0.25 + 1e-8, 0.25 - 1e-8}) {
@@ -186,22 +187,22 @@ TEST(SelfCollision, CylinderAnalytic) {
     Eigen::VectorXd config(2);
     config[lift] = 0.9;  // the side ball far above
     config[reach] = r;
-    const LinkPairProximity p = checker.min_distance(config);
+    const ClearanceResult p = checker.clearance(config);
     EXPECT_NEAR(p.distance, r - 0.25, kTol);
-    EXPECT_EQ(p.link_b_name, "cap");
+    EXPECT_EQ(p.name_b, "cap");
     EXPECT_NEAR(p.point_a.x(), 0.2, kTol);
   }
 }
 
 TEST(SelfCollision, PaddingChangedAfterConstructionIsUsed) {
   auto owned = std::make_shared<RobotModel>(RobotModel::from_urdf_string(kTwoSpheres, "."));
-  SelfCollisionChecker checker(owned, AllowedCollisionMatrix(2));
-  EXPECT_NEAR(checker.min_distance(q1(0.5)).distance, 0.2, kTol);
+  const CollisionChecker checker(owned, AllowedCollisionMatrix(2));
+  EXPECT_NEAR(checker.clearance(q1(0.5)).distance, 0.2, kTol);
   owned->set_default_padding(0.05);
-  EXPECT_NEAR(checker.min_distance(q1(0.5)).distance, 0.1, kTol);
-  EXPECT_TRUE(checker.in_collision(q1(0.39)));
+  EXPECT_NEAR(checker.clearance(q1(0.5)).distance, 0.1, kTol);
+  EXPECT_TRUE(!checker.is_valid(q1(0.39)));
   owned->set_link_padding("ball", 0.0);
-  EXPECT_NEAR(checker.min_distance(q1(0.5)).distance, 0.15, kTol);
+  EXPECT_NEAR(checker.clearance(q1(0.5)).distance, 0.15, kTol);
 }
 
 // ---------------------------------------------------------------- several links
@@ -231,7 +232,7 @@ TEST(SelfCollision, CollidingLinkPairsAreExactlyTheOverlappingOnes) {
   const auto model = load_string(kStar);
   ASSERT_EQ(model->variable_names(), (std::vector<std::string>{"jx", "jy", "jz", "jd"}));
   const int n = static_cast<int>(model->links().size());
-  SelfCollisionChecker checker(model, AllowedCollisionMatrix(n));
+  const CollisionChecker checker(model, AllowedCollisionMatrix(n));
   ASSERT_EQ(checker.checked_link_pairs().size(), 6u);  // root has no geometry
   std::mt19937_64 rng(3);
   std::vector<Eigen::Isometry3d> poses;
@@ -269,8 +270,8 @@ TEST(SelfCollision, CollidingLinkPairsAreExactlyTheOverlappingOnes) {
     EXPECT_EQ(got.size(), got_set.size()) << "a pair reported twice at " << q.transpose();
     EXPECT_EQ(got_set, expected) << q.transpose();
     for (const auto& [a, b] : got) EXPECT_LT(a, b);
-    EXPECT_EQ(checker.in_collision_at(poses), !expected.empty());
-    EXPECT_NEAR(checker.min_distance_at(poses).distance, expected_min, kTol);
+    EXPECT_EQ(!checker.is_valid_at(poses), !expected.empty());
+    EXPECT_NEAR(checker.clearance_at(poses).distance, expected_min, kTol);
     with_pairs += !expected.empty();
     with_several += expected.size() > 1;
   }
@@ -321,7 +322,7 @@ void compare_with_brute_force(const test::RobotFile& robot, int samples, double 
   const auto model =
       std::make_shared<const RobotModel>(RobotModel::from_urdf_file(robot.urdf, options));
   const AllowedCollisionMatrix acm = AllowedCollisionMatrix::from_adjacency(*model);
-  SelfCollisionChecker checker(model, acm);
+  const CollisionChecker checker(model, acm);
   std::mt19937_64 rng(11);
   std::vector<Eigen::Isometry3d> poses;
   long exact = 0, total = 0;
@@ -330,17 +331,17 @@ void compare_with_brute_force(const test::RobotFile& robot, int samples, double 
     const Eigen::VectorXd q = random_configuration(*model, rng);
     model->compute_link_poses(q, poses);
     const BruteForce bf = brute_force(*model, acm, poses);
-    const LinkPairProximity p = checker.min_distance_at(poses);
+    const ClearanceResult p = checker.clearance_at(poses);
     ASSERT_NEAR(p.distance, bf.min, kTol) << it << ": " << q.transpose();
     // The reported pair is one whose brute-force distance is that minimum.
     bool found = false;
     for (const auto& [pair, d] : bf.per_link_pair) {
       if (pair == std::make_pair(p.link_a, p.link_b)) found = std::abs(d - p.distance) < kTol;
     }
-    EXPECT_TRUE(found) << it << ": " << p.link_a_name << " / " << p.link_b_name;
+    EXPECT_TRUE(found) << it << ": " << p.name_a << " / " << p.name_b;
     EXPECT_LT((p.point_b - p.point_a - p.distance * p.normal).norm(), 1e-8) << it;
     if (std::abs(bf.min) > kTol) {
-      EXPECT_EQ(checker.in_collision_at(poses), bf.min < 0) << it;
+      EXPECT_EQ(!checker.is_valid_at(poses), bf.min < 0) << it;
     }
     std::vector<std::pair<int, int>> got;
     checker.colliding_link_pairs_at(poses, got);
@@ -358,7 +359,7 @@ void compare_with_brute_force(const test::RobotFile& robot, int samples, double 
     total += bf.shape_pairs;
   }
   std::printf(
-      "[ %s, padding %g ] %d samples, %d in self-collision; min_distance ran GJK on %.1f%% of "
+      "[ %s, padding %g ] %d samples, %d in self-collision; clearance ran GJK on %.1f%% of "
       "%ld shape pairs\n",
       robot.id.c_str(), padding, samples, colliding,
       100.0 * static_cast<double>(exact) / static_cast<double>(total), total);
@@ -489,7 +490,7 @@ int crossing_triangle_pairs(const std::vector<Triangle>& ta, const std::vector<T
 
 struct StateVerdict {
   std::string name;
-  LinkPairProximity closest;
+  ClearanceResult closest;
   std::vector<std::pair<std::string, std::string>> colliding;
 };
 
@@ -498,22 +499,22 @@ struct StateVerdict {
 std::vector<StateVerdict> check_states(const std::shared_ptr<const RobotModel>& model,
                                        const Srdf& srdf, const AllowedCollisionMatrix& acm,
                                        const Eigen::VectorXd& base) {
-  SelfCollisionChecker checker(model, acm);
+  const CollisionChecker checker(model, acm);
   std::vector<StateVerdict> out;
   std::vector<Eigen::Isometry3d> poses;
   for (const SrdfGroupState& state : srdf.group_states) {
     Eigen::VectorXd q = base;
     apply_state(*model, state, q);
     model->compute_link_poses(q, poses);
-    StateVerdict v{state.group + "/" + state.name, checker.min_distance_at(poses), {}};
+    StateVerdict v{state.group + "/" + state.name, checker.clearance_at(poses), {}};
     std::vector<std::pair<int, int>> pairs;
     checker.colliding_link_pairs_at(poses, pairs);
     for (const auto& [a, b] : pairs)
       v.colliding.emplace_back(model->link(a).name, model->link(b).name);
-    EXPECT_EQ(checker.in_collision_at(poses), !pairs.empty()) << v.name;
+    EXPECT_EQ(!checker.is_valid_at(poses), !pairs.empty()) << v.name;
     std::printf("[ %s ] %s: closest checked pair %s / %s at %.4f m, %zu pair(s) colliding\n",
-                model->name().c_str(), v.name.c_str(), std::string(v.closest.link_a_name).c_str(),
-                std::string(v.closest.link_b_name).c_str(), v.closest.distance, v.colliding.size());
+                model->name().c_str(), v.name.c_str(), std::string(v.closest.name_a).c_str(),
+                std::string(v.closest.name_b).c_str(), v.closest.distance, v.colliding.size());
     out.push_back(v);
   }
   return out;
@@ -593,7 +594,7 @@ TEST(SelfCollision, PandaDefaultConfigurationFoldsTheHandOntoLink5) {
   const auto model = std::make_shared<const RobotModel>(RobotModel::from_urdf_file(urdf));
   const AllowedCollisionMatrix acm =
       AllowedCollisionMatrix::from_srdf(*model, read_srdf_file(dir + "/srdf/panda.srdf"));
-  SelfCollisionChecker checker(model, acm);
+  const CollisionChecker checker(model, acm);
   std::vector<Eigen::Isometry3d> poses;
   model->compute_link_poses(model->default_configuration(), poses);
   std::vector<std::pair<int, int>> pairs;
@@ -621,7 +622,7 @@ TEST(SelfCollision, OwnArmNamedStatesAreFreeWithAdjacencyOnly) {
     EXPECT_GT(v.closest.distance, 0.0079) << v.name;
   }
   // Every arm state with every gripper state.
-  SelfCollisionChecker checker(model, adjacency);
+  const CollisionChecker checker(model, adjacency);
   int combined = 0;
   for (const SrdfGroupState& arm : srdf.group_states) {
     if (arm.group != "arm") continue;
@@ -630,7 +631,7 @@ TEST(SelfCollision, OwnArmNamedStatesAreFreeWithAdjacencyOnly) {
       Eigen::VectorXd q = model->default_configuration();
       apply_state(*model, arm, q);
       apply_state(*model, hand, q);
-      EXPECT_FALSE(checker.in_collision(q)) << arm.name << " + " << hand.name;
+      EXPECT_FALSE(!checker.is_valid(q)) << arm.name << " + " << hand.name;
       ++combined;
     }
   }
@@ -661,35 +662,35 @@ TEST(SelfCollision, OtherSharedNamedStatesAreFreeWithTheirSrdfMatrix) {
 TEST(SelfCollision, Misuse) {
   const auto model = load_string(kTwoSpheres);
   try {
-    SelfCollisionChecker checker(model, AllowedCollisionMatrix(3));
+    const CollisionChecker checker(model, AllowedCollisionMatrix(3));
     ADD_FAILURE() << "no error for a matrix of the wrong size";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("3 links"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("two_spheres"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(SelfCollisionChecker(nullptr, AllowedCollisionMatrix(2)), InputError);
-  SelfCollisionChecker checker(model, AllowedCollisionMatrix(2));
+  EXPECT_THROW(CollisionChecker(nullptr, AllowedCollisionMatrix(2)), InputError);
+  const CollisionChecker checker(model, AllowedCollisionMatrix(2));
   std::vector<Eigen::Isometry3d> too_few(1, Eigen::Isometry3d::Identity());
   try {
-    checker.min_distance_at(too_few);
+    checker.clearance_at(too_few);
     ADD_FAILURE() << "no error for too few link poses";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("1 link poses"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(checker.in_collision_at(too_few), InputError);
-  EXPECT_THROW(checker.in_collision(Eigen::VectorXd::Zero(2)), InputError);
-  EXPECT_THROW(checker.min_distance(q1(std::nan(""))), InputError);
+  EXPECT_THROW(!checker.is_valid_at(too_few), InputError);
+  EXPECT_THROW(!checker.is_valid(Eigen::VectorXd::Zero(2)), InputError);
+  EXPECT_THROW(checker.clearance(q1(std::nan(""))), InputError);
 }
 
 TEST(SelfCollision, CopiesAreIndependent) {
   const auto model = load_string(kTwoSpheres);
-  SelfCollisionChecker a(model, AllowedCollisionMatrix(2));
-  SelfCollisionChecker b = a;
-  const LinkPairProximity pa = a.min_distance(q1(0.5));
-  const LinkPairProximity pb = b.min_distance(q1(-0.1));
+  CollisionChecker a(model, AllowedCollisionMatrix(2));
+  CollisionChecker b = a;
+  const ClearanceResult pa = a.clearance(q1(0.5));
+  const ClearanceResult pb = b.clearance(q1(-0.1));
   EXPECT_NEAR(pa.distance, 0.2, kTol);
   EXPECT_NEAR(pb.distance, -0.2, kTol);
-  EXPECT_NEAR(a.min_distance(q1(0.5)).distance, 0.2, kTol);
+  EXPECT_NEAR(a.clearance(q1(0.5)).distance, 0.2, kTol);
 }
 
 }  // namespace

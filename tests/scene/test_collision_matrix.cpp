@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <hullcheck/core/errors.hpp>
-#include <hullcheck/robot.hpp>
+#include <hullcheck/scene.hpp>
 #include <map>
 #include <memory>
 #include <random>
@@ -158,7 +158,7 @@ TEST(Adjacency, OwnArmByHand) {
   }
   EXPECT_EQ(acm.allowed_pair_count(), 12);
   // Among links with geometry: exactly the 10 directly joined pairs, as the README says.
-  SelfCollisionChecker checker(model, acm);
+  const CollisionChecker checker(model, acm);
   EXPECT_EQ(checker.checked_link_pairs().size(), 55u - 10u);  // 11 links with geometry
 }
 
@@ -220,9 +220,9 @@ TEST(Adjacency, FixedToolIsNotAdjacentToTheLinkBeforeItsCarrier) {
       pairs,
       pair_set({{"upper", "lower"}, {"lower", "tool"}, {"lower", "frame"}, {"tool", "frame"}}));
   // And the tool does hit the upper link when the elbow folds.
-  SelfCollisionChecker checker(model, acm);
-  EXPECT_FALSE(checker.in_collision(Eigen::VectorXd::Constant(1, 0.0)));
-  EXPECT_TRUE(checker.in_collision(Eigen::VectorXd::Constant(1, 1.5)));
+  const CollisionChecker checker(model, acm);
+  EXPECT_FALSE(!checker.is_valid(Eigen::VectorXd::Constant(1, 0.0)));
+  EXPECT_TRUE(!checker.is_valid(Eigen::VectorXd::Constant(1, 1.5)));
 }
 
 TEST(Adjacency, PandaMatchesItsSrdfAdjacentPairs) {
@@ -406,7 +406,7 @@ TEST(GenerateCollisionMatrix, NeverPairsRarelyCollideInFreshSamples) {
   CollisionMatrixOptions options;
   options.samples = 2000;
   const GeneratedCollisionMatrix g = generate_collision_matrix(*model, options);
-  SelfCollisionChecker checker(model, AllowedCollisionMatrix::from_adjacency(*model));
+  const CollisionChecker checker(model, AllowedCollisionMatrix::from_adjacency(*model));
   std::mt19937_64 rng(20261121);
   std::vector<Eigen::Isometry3d> poses;
   std::vector<std::pair<int, int>> pairs;

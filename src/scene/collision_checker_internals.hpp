@@ -1,0 +1,52 @@
+// CollisionChecker's private types shared by its source files (not installed): per-thread
+// scratch storage and the lazily built lever arms.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <hullcheck/scene/collision_checker.hpp>
+#include <mutex>
+#include <utility>
+#include <vector>
+
+namespace hullcheck {
+
+struct CollisionChecker::Scratch {
+  std::vector<Eigen::Isometry3d> link_poses;
+  std::vector<Eigen::Isometry3d> shape_poses;
+  std::vector<Eigen::Vector3d> centers;
+  std::vector<double> lower_bounds;
+  std::vector<double> motions;
+  Eigen::VectorXd abs_dq;
+  Eigen::VectorXd q_end;
+  // Shape poses are computed when a pair needs them: posed[i] == stamp when shape_poses[i]
+  // belongs to the current query (stamp grows with every place(), so no stale pose is used,
+  // whichever checker ran before on this thread).
+  std::vector<std::uint64_t> posed;
+  std::vector<std::uint64_t> centered;  // centers[i] is current when centered[i] == stamp
+  std::uint64_t stamp = 0;
+  const std::vector<Eigen::Isometry3d>* link_poses_in = nullptr;  // of the current query
+  const double* q = nullptr;  // configuration of the current query, when it has one
+  std::vector<Eigen::Vector3d> group_centers;
+  std::vector<double> group_radii;
+  std::vector<Eigen::Vector3d> link_centers;  // per link_balls_ entry, model frame
+  // is_valid: per shape, the stamp of the query and self block for which it was found to meet
+  // the other link's hull (pieces that do not cannot meet any of that link's pieces).
+  std::vector<std::uint64_t> meets_other;
+  std::vector<std::pair<double, int>> candidates;  // clearance: queue of (lower bound, code)
+  std::vector<std::pair<double, int>> nearest;     // clearance: (ball bound, code)
+  std::vector<std::pair<double, int>> expanded;    // clearance: a block's pairs
+};
+
+// Lever arms (m per unit of a configuration value; 1 for prismatic values, which move points by
+// |dq|), built by build_motion_levers under `built`.
+struct CollisionChecker::MotionLevers {
+  std::once_flag built;
+  // motion_bound: per value, the largest lever arm over the shapes it moves.
+  Eigen::VectorXd lever;
+  // safe_advance: per robot shape / per self pair, the motion per unit of each value.
+  Eigen::MatrixXd shape_levers;      // shapes x values
+  Eigen::MatrixXd self_pair_levers;  // self pairs x values
+};
+
+}  // namespace hullcheck

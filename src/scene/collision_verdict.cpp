@@ -1,0 +1,146 @@
+// CollisionChecker::is_valid: the first overlapping pair, through the broad phase (group and
+// link balls against obstacle boxes and each other, bounding hulls) and exact boolean GJK.
+#include <cstdint>
+#include <hullcheck/core/queries.hpp>
+#include <hullcheck/scene/collision_checker.hpp>
+
+#include "collision_checker_internals.hpp"
+
+namespace hullcheck {
+
+bool CollisionChecker::is_valid(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  model_->check_configuration(q);
+  Scratch& s = scratch();
+  model_->compute_link_poses_unchecked(q.data(), s.link_poses.data());
+  return is_valid_at(s.link_poses);
+}
+
+bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_poses) const {
+  Scratch& s = scratch();
+  place(link_poses, s);
+  for (const EnvironmentBlock& block : blocks_) {
+    if (environment_block_overlaps(block, s)) return false;
+  }
+  for (const SelfBlock& block : self_blocks_) {
+    if (self_block_overlaps(block, s)) return false;
+  }
+  return true;
+}
+
+void CollisionChecker::colliding_link_pairs_at(const std::vector<Eigen::Isometry3d>& link_poses,
+                                               std::vector<std::pair<int, int>>& out) const {
+  Scratch& s = scratch();
+  place(link_poses, s);
+  for (const SelfBlock& block : self_blocks_) {
+    if (self_block_overlaps(block, s)) {
+      out.emplace_back(link_balls_[static_cast<std::size_t>(block.link_a)].link,
+                       link_balls_[static_cast<std::size_t>(block.link_b)].link);
+    }
+  }
+}
+
+std::vector<std::pair<int, int>> CollisionChecker::checked_link_pairs() const {
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(self_blocks_.size());
+  for (const SelfBlock& block : self_blocks_) {
+    pairs.emplace_back(link_balls_[static_cast<std::size_t>(block.link_a)].link,
+                       link_balls_[static_cast<std::size_t>(block.link_b)].link);
+  }
+  return pairs;
+}
+
+namespace {
+
+// A ball is clear of an oriented box when its centre is further than its radius from the box.
+bool ball_clear_of_box(const Eigen::Matrix3d& box_rotation_t, const Eigen::Vector3d& box_center,
+                       const Eigen::Vector3d& half_extents, const Eigen::Vector3d& c,
+                       double radius) {
+  const Eigen::Vector3d local = box_rotation_t * (c - box_center);
+  return (local.cwiseAbs() - half_extents).cwiseMax(0.0).squaredNorm() > radius * radius;
+}
+
+}  // namespace
+
+bool CollisionChecker::environment_block_overlaps(const EnvironmentBlock& block, Scratch& s) const {
+  // Balls against the obstacle's oriented box: the shape group's ball first, then its shapes'.
+  const ObstacleBox& box = boxes_[static_cast<std::size_t>(block.obstacle)];
+  const auto clear = [&box](const Eigen::Vector3d& c, double radius) {
+    return ball_clear_of_box(box.rotation_t, box.center, box.half_extents, c, radius);
+  };
+  const auto g = static_cast<std::size_t>(block.group);
+  if (block.end - block.begin > 1 && clear(s.group_centers[g], s.group_radii[g])) return false;
+  const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(block.obstacle)];
+  const int bound = groups_[g].bound;
+  if (bound >= 0 && block.end - block.begin > 1) {
+    // A decomposed mesh: its hull first (it contains every piece; one query, not one each).
+    if (!intersect(bounding_shape(bound), shape_pose(bound, s), o.shape, o.pose)) return false;
+  }
+  for (int i = block.begin; i < block.end; ++i) {
+    const int shape = environment_pairs_[static_cast<std::size_t>(i)].shape;
+    if (clear(center(shape, s), shapes_[static_cast<std::size_t>(shape)].radius)) continue;
+    if (intersect(shape_of(shape), shape_pose(shape, s), o.shape, o.pose)) return true;
+  }
+  return false;
+}
+
+bool CollisionChecker::mark_pieces_meeting(int link_ball, const Shape& other,
+                                           const Eigen::Isometry3d& other_pose, std::uint64_t mark,
+                                           Scratch& s) const {
+  bool any = false;
+  const int l = link_balls_[static_cast<std::size_t>(link_ball)].link;
+  for (int sh = shape_begin_[static_cast<std::size_t>(l)];
+       sh < shape_begin_[static_cast<std::size_t>(l) + 1]; ++sh) {
+    if (intersect(shape_of(sh), shape_pose(sh, s), other, other_pose)) {
+      s.meets_other[static_cast<std::size_t>(sh)] = mark;
+      any = true;
+    }
+  }
+  return any;
+}
+
+bool CollisionChecker::self_block_overlaps(const SelfBlock& block, Scratch& s) const {
+  // Non-zero when the pieces meeting the other link's hull are marked with it (below).
+  std::uint64_t mark = 0;
+  if (block.end - block.begin > 1) {
+    const double reach = link_balls_[static_cast<std::size_t>(block.link_a)].radius +
+                         link_balls_[static_cast<std::size_t>(block.link_b)].radius;
+    if ((s.link_centers[static_cast<std::size_t>(block.link_a)] -
+         s.link_centers[static_cast<std::size_t>(block.link_b)])
+            .squaredNorm() > reach * reach) {
+      return false;
+    }
+    // Links that are one shape or one decomposed mesh: their hulls first.
+    const int bound_a = link_balls_[static_cast<std::size_t>(block.link_a)].bound;
+    const int bound_b = link_balls_[static_cast<std::size_t>(block.link_b)].bound;
+    if (bound_a >= 0 && bound_b >= 0) {
+      const Shape& hull_a = bounding_shape(bound_a);
+      const Shape& hull_b = bounding_shape(bound_b);
+      const Eigen::Isometry3d& pose_a = shape_pose(bound_a, s);
+      const Eigen::Isometry3d& pose_b = shape_pose(bound_b, s);
+      if (!intersect(hull_a, pose_a, hull_b, pose_b)) return false;
+      if (block.end - block.begin > kGroupSize) {
+        // Many piece pairs: each piece against the other link's hull first; only pieces
+        // meeting it can meet a piece of that link. A mark is this query and block's stamp.
+        mark = (s.stamp << 20) + static_cast<std::uint64_t>(&block - self_blocks_.data()) + 1;
+        if (!mark_pieces_meeting(block.link_a, hull_b, pose_b, mark, s)) return false;
+        if (!mark_pieces_meeting(block.link_b, hull_a, pose_a, mark, s)) return false;
+      }
+    }
+  }
+  for (int k = block.begin; k < block.end; ++k) {
+    const SelfPair& p = self_pairs_[static_cast<std::size_t>(k)];
+    if (mark != 0 && (s.meets_other[static_cast<std::size_t>(p.a)] != mark ||
+                      s.meets_other[static_cast<std::size_t>(p.b)] != mark)) {
+      continue;  // one of the two pieces is clear of the other link's hull
+    }
+    const double reach = shapes_[static_cast<std::size_t>(p.a)].radius +
+                         shapes_[static_cast<std::size_t>(p.b)].radius;
+    if ((center(p.a, s) - center(p.b, s)).squaredNorm() > reach * reach) continue;
+    if (intersect(shape_of(p.a), shape_pose(p.a, s), shape_of(p.b), shape_pose(p.b, s))) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace hullcheck

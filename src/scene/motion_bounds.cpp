@@ -1,0 +1,236 @@
+// CollisionChecker's motion bounds: the lever arms of each joint over the shapes it moves, and
+// the bounds built on them (motion_bound, safe_advance's conservative advancement).
+#include <algorithm>
+#include <cmath>
+#include <hullcheck/core/errors.hpp>
+#include <hullcheck/scene/collision_checker.hpp>
+
+#include "collision_checker_internals.hpp"
+
+namespace hullcheck {
+
+// above[l][j]: joint j is on the path from the root to link l.
+std::vector<std::vector<bool>> CollisionChecker::joints_above_links() const {
+  const int n = static_cast<int>(model_->links().size());
+  const int joint_count = static_cast<int>(model_->joints().size());
+  std::vector<std::vector<bool>> above(static_cast<std::size_t>(n),
+                                       std::vector<bool>(static_cast<std::size_t>(joint_count)));
+  for (int l = 0; l < n; ++l) {
+    for (int x = l; model_->link(x).parent_joint >= 0;) {
+      const int j = model_->link(x).parent_joint;
+      above[static_cast<std::size_t>(l)][static_cast<std::size_t>(j)] = true;
+      x = model_->joint(j).parent_link;
+    }
+  }
+  return above;
+}
+
+int CollisionChecker::relative_drivers(int link_a, int link_b, int at_most, int* keys) const {
+  // The joints above exactly one link are those between it and the two links' deepest common
+  // ancestor: climb from the deeper link until both meet.
+  int count = 0;
+  const auto climb = [&](int* link) {
+    const Joint& joint = model_->joint(model_->link(*link).parent_joint);
+    *link = joint.parent_link;
+    if (joint.type == JointType::kFixed) return true;
+    const int v = joint.driver();
+    if (std::find(keys, keys + std::min(count, at_most), v) != keys + std::min(count, at_most)) {
+      return true;
+    }
+    if (count < at_most) keys[count] = v;
+    return ++count <= at_most;
+  };
+  while (link_a != link_b) {
+    int* deeper = link_depth_[static_cast<std::size_t>(link_a)] >=
+                          link_depth_[static_cast<std::size_t>(link_b)]
+                      ? &link_a
+                      : &link_b;
+    if (!climb(deeper)) return at_most + 1;
+  }
+  return count;
+}
+
+const CollisionChecker::MotionLevers& CollisionChecker::motion_levers() const {
+  std::call_once(motion_levers_->built, [this] { build_motion_levers(*motion_levers_); });
+  return *motion_levers_;
+}
+
+void CollisionChecker::build_motion_levers(MotionLevers& out) const {
+  const int n = static_cast<int>(model_->links().size());
+  const std::vector<std::vector<bool>> above = joints_above_links();
+  // Lever arms. For each movable joint, the largest distance from its origin to any point of
+  // each shape it moves: reach[l] bounds the distance from the joint's origin to the frame
+  // origin of link l below it (accumulated along the chain, prismatic travel included).
+  const int variables = model_->variable_count();
+  out.lever = Eigen::VectorXd::Zero(variables);
+  out.shape_levers = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(shapes_.size()), variables);
+  out.self_pair_levers =
+      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(self_pairs_.size()), variables);
+  const int joint_count = static_cast<int>(model_->joints().size());
+  // arm(j, s): motion of shape s per unit of joint j's own value (0 when j does not move s).
+  Eigen::MatrixXd arm =
+      Eigen::MatrixXd::Zero(joint_count, static_cast<Eigen::Index>(shapes_.size()));
+  std::vector<double> reach(static_cast<std::size_t>(n));
+  for (int ji = 0; ji < joint_count; ++ji) {
+    const Joint& joint = model_->joint(ji);
+    if (joint.type == JointType::kFixed) continue;
+    std::vector<int> stack{joint.child_link};
+    reach[static_cast<std::size_t>(joint.child_link)] = 0.0;
+    while (!stack.empty()) {
+      const int l = stack.back();
+      stack.pop_back();
+      for (int sh = shape_begin_[static_cast<std::size_t>(l)];
+           sh < shape_begin_[static_cast<std::size_t>(l) + 1]; ++sh) {
+        const RobotShape& rs = shapes_[static_cast<std::size_t>(sh)];
+        arm(ji, sh) = joint.type == JointType::kPrismatic
+                          ? 1.0
+                          : reach[static_cast<std::size_t>(l)] + rs.center.norm() + rs.radius;
+      }
+      for (int k : model_->link(l).child_joints) {
+        const Joint& child = model_->joint(k);
+        const double travel = child.type == JointType::kPrismatic ? child.limit_reach() : 0.0;
+        reach[static_cast<std::size_t>(child.child_link)] =
+            reach[static_cast<std::size_t>(l)] + child.origin.translation().norm() + travel;
+        stack.push_back(child.child_link);
+      }
+    }
+  }
+  for (int ji = 0; ji < joint_count; ++ji) {
+    const Joint& joint = model_->joint(ji);
+    if (joint.type == JointType::kFixed) continue;
+    const int v = joint.driver();
+    const double m = std::abs(joint.driver_multiplier());
+    out.lever[v] += m * arm.row(ji).maxCoeff();
+    out.shape_levers.col(v) += m * arm.row(ji).transpose();
+    for (std::size_t p = 0; p < self_pairs_.size(); ++p) {
+      const int a = self_pairs_[p].a, b = self_pairs_[p].b;
+      const bool above_a =
+          above[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(a)].link)]
+               [static_cast<std::size_t>(ji)];
+      const bool above_b =
+          above[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(b)].link)]
+               [static_cast<std::size_t>(ji)];
+      if (above_a == above_b) continue;  // moves both rigidly, or neither
+      out.self_pair_levers(static_cast<Eigen::Index>(p), v) += m * arm(ji, above_a ? a : b);
+    }
+  }
+}
+
+double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                      const Eigen::Ref<const Eigen::VectorXd>& dq,
+                                      double min_clearance) const {
+  model_->check_configuration(q);
+  if (dq.size() != q.size() || !dq.allFinite()) {
+    throw InputError("CollisionChecker::safe_advance: dq must have " + std::to_string(q.size()) +
+                     " finite values");
+  }
+  Scratch& s = scratch();
+  model_->compute_link_poses_unchecked(q.data(), s.link_poses.data());
+  place(s.link_poses, s);
+  s.q = q.data();
+  const std::size_t n_env = environment_pairs_.size();
+  const std::size_t n_all = n_env + self_pairs_.size();
+  if (s.motions.size() < n_all) s.motions.resize(n_all);
+  if (s.abs_dq.size() != dq.size()) {  // per-thread scratch: allocates on first use only
+    s.abs_dq.resize(dq.size());
+    s.q_end.resize(dq.size());
+  }
+  Eigen::VectorXd& abs_dq = s.abs_dq;
+  abs_dq = dq.cwiseAbs();
+  s.q_end = q + dq;
+  // Lever arms assume prismatic joints within their limits; beyond them (RobotModel does not
+  // clamp), shapes below sit further from the rotating joints above. Over t in [0, 1] a
+  // prismatic value stays within max(|q|, |q + dq|): add that excess times the rotation of
+  // every joint above, to every pair (conservative), and certify no further than t = 1.
+  const double extra = prismatic_excess_motion(q, s.q_end);
+  const MotionLevers& levers = motion_levers();
+  // Per pair: gap lower bound (bounding volumes) and motion per unit s.
+  double best = std::numeric_limits<double>::infinity();
+  std::size_t first = n_all;
+  for (std::size_t i = 0; i < n_all; ++i) {
+    double lb, motion;
+    if (i < n_env) {
+      const EnvironmentPair& p = environment_pairs_[i];
+      lb = box_gap(boxes_[static_cast<std::size_t>(p.obstacle)], center(p.shape, s),
+                   shapes_[static_cast<std::size_t>(p.shape)].radius);
+      motion = levers.shape_levers.row(p.shape).dot(abs_dq) + extra;
+    } else {
+      const SelfPair& p = self_pairs_[i - n_env];
+      lb = (center(p.a, s) - center(p.b, s)).norm() -
+           shapes_[static_cast<std::size_t>(p.a)].radius -
+           shapes_[static_cast<std::size_t>(p.b)].radius;
+      motion = levers.self_pair_levers.row(static_cast<Eigen::Index>(i - n_env)).dot(abs_dq) +
+               2.0 * extra;
+    }
+    s.lower_bounds[i] = lb;
+    s.motions[i] = motion;
+    const double key = lb <= min_clearance ? -1.0 : lb / motion;  // inf when motion == 0
+    if (key < best || first == n_all) {
+      best = key;
+      first = i;
+    }
+  }
+  if (n_all == 0) return 1.0;
+  // Signed distance of pair i when below `cutoff` (else a proven lower bound >= cutoff);
+  // false when it is within min_clearance (touching or overlapping).
+  const auto exact = [&](std::size_t i, double cutoff, double* d) {
+    *d = pair_distance_below(i, cutoff, s).signed_distance;
+    return *d > min_clearance;
+  };
+
+  double step = std::numeric_limits<double>::infinity();
+  double d = 0.0;
+  if (!exact(first, INFINITY, &d)) return -1.0;
+  step = d / s.motions[first];
+  for (std::size_t i = 0; i < n_all; ++i) {
+    if (i == first) continue;
+    const double lb = s.lower_bounds[i];
+    // Distances from `limit` on cannot shorten the step (a pair that does not move cannot).
+    const double limit = s.motions[i] > 0.0 ? step * s.motions[i] : 0.0;
+    if (lb > min_clearance && lb >= limit) continue;
+    // The query may stop at any proof that the distance reaches max(limit, min_clearance)
+    // (a lower bound d >= limit changes nothing below; d <= min_clearance is exact).
+    if (!exact(i, std::max(limit, min_clearance), &d)) return -1.0;
+    step = std::min(step, d / s.motions[i]);
+  }
+  return std::min(step, 1.0);
+}
+
+double CollisionChecker::prismatic_excess_motion(
+    const Eigen::Ref<const Eigen::VectorXd>& q0,
+    const Eigen::Ref<const Eigen::VectorXd>& q1) const {
+  // The lever arms assume prismatic joints within their limits, which configurations need not
+  // respect (RobotModel does not clamp; MBM's Panda start states hold the fingers beyond
+  // them). A prismatic value beyond its limits puts the shapes below it up to `beyond` further
+  // from every rotating joint above it.
+  double extra = 0.0;
+  for (const Joint& joint : model_->joints()) {
+    if (joint.type != JointType::kPrismatic) continue;
+    const int v = joint.driver();
+    const double beyond =
+        std::abs(joint.driver_multiplier()) * std::max(std::abs(q0[v]), std::abs(q1[v])) +
+        std::abs(joint.driver_offset()) - joint.limit_reach();
+    if (!(beyond > 0.0)) continue;
+    for (int l = joint.parent_link; model_->link(l).parent_joint >= 0;) {
+      const Joint& above = model_->joint(model_->link(l).parent_joint);
+      if (above.type == JointType::kRevolute || above.type == JointType::kContinuous) {
+        const int va = above.driver();
+        extra += beyond * std::abs(above.driver_multiplier()) * std::abs(q1[va] - q0[va]);
+      }
+      l = above.parent_link;
+    }
+  }
+  return extra;
+}
+
+double CollisionChecker::motion_bound(const Eigen::Ref<const Eigen::VectorXd>& q0,
+                                      const Eigen::Ref<const Eigen::VectorXd>& q1) const {
+  model_->check_configuration(q0);
+  model_->check_configuration(q1);
+  // prismatic_excess_motion: shapes below a prismatic joint beyond its limits.
+  const double bound =
+      (q1 - q0).cwiseAbs().dot(motion_levers().lever) + prismatic_excess_motion(q0, q1);
+  return has_self_pairs_ ? 2.0 * bound : bound;
+}
+
+}  // namespace hullcheck
