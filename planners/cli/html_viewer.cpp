@@ -4,7 +4,12 @@
 
 #include <fstream>
 #include <hullcheck/core/errors.hpp>
+#include <map>
 #include <sstream>
+#include <stdexcept>
+#include <string_view>
+
+#include "viewer_page.hpp"
 
 namespace hullcheck::cli {
 namespace {
@@ -112,157 +117,26 @@ std::string script_safe(const char* json) {
   return out;
 }
 
-const char* const kScript = R"JS(
-const data = JSON.parse(document.getElementById('data').textContent);
-const renderer = new THREE.WebGLRenderer({antialias: true});
-renderer.setPixelRatio(window.devicePixelRatio);
-document.body.appendChild(renderer.domElement);
-const scene = new THREE.Scene();
-scene.background = new THREE.Color(0xf4f4f4);
-const camera = new THREE.PerspectiveCamera(45, 1, 0.01, 100);
-camera.up.set(0, 0, 1);  // z up, as in ROS
-const controls = new THREE.OrbitControls(camera, renderer.domElement);
-// A headlight (the directional light moves with the camera, so every view is lit) and ambient.
-scene.add(new THREE.AmbientLight(0xffffff, 0.45));
-const light = new THREE.DirectionalLight(0xffffff, 0.7);
-light.position.set(0.5, 1, 0.2);  // camera frame: from above and a little to the right
-light.target.position.set(0, 0, -1);
-camera.add(light, light.target);
-scene.add(camera);
-function geometryOf(s) {
-  if (s.type === 'box') return new THREE.BoxGeometry(s.size[0], s.size[1], s.size[2]);
-  if (s.type === 'sphere') return new THREE.SphereGeometry(s.radius, 32, 16);
-  if (s.type === 'cylinder' || s.type === 'capsule') {
-    const g = new THREE.CylinderGeometry(s.radius, s.radius, s.length, 32);
-    g.rotateX(Math.PI / 2);  // three.js cylinders run along y; ours along z
-    return g;
-  }
-  const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.Float32BufferAttribute(s.vertices, 3));
-  g.setIndex(s.triangles);
-  g.computeVertexNormals();
-  return g;
-}
-function meshOf(s, color, opacity) {
-  const material = new THREE.MeshPhongMaterial({color: color, transparent: opacity < 1,
-    opacity: opacity, flatShading: s.type === 'hull', side: THREE.DoubleSide});
-  const group = new THREE.Group();
-  group.add(new THREE.Mesh(geometryOf(s), material));
-  if (s.type === 'capsule') {
-    for (const z of [-s.length / 2, s.length / 2]) {
-      const cap = new THREE.Mesh(new THREE.SphereGeometry(s.radius, 32, 16), material);
-      cap.position.z = z;
-      group.add(cap);
+// The page template with each {{name}} replaced by values.at(name); the values themselves are
+// not searched for placeholders. Throws std::logic_error for a placeholder without a value.
+std::string filled_page(std::string_view page,
+                        const std::map<std::string_view, std::string_view>& values) {
+  std::string out;
+  std::size_t pos = 0;
+  for (;;) {
+    const std::size_t open = page.find("{{", pos);
+    const std::size_t close = open == std::string_view::npos ? open : page.find("}}", open + 2);
+    if (close == std::string_view::npos) break;
+    const std::string_view name = page.substr(open + 2, close - open - 2);
+    const auto value = values.find(name);
+    if (value == values.end()) {
+      throw std::logic_error("viewer page: no value for {{" + std::string(name) + "}}");
     }
+    out.append(page.substr(pos, open - pos)).append(value->second);
+    pos = close + 2;
   }
-  return group;
+  return out.append(page.substr(pos));
 }
-function place(object, m) {
-  object.matrixAutoUpdate = false;
-  object.matrix.fromArray(m);
-}
-const world = new THREE.Group();
-for (const o of data.obstacles) {
-  const mesh = meshOf(o.shape, 0xc0504d, 0.55);
-  place(mesh, o.pose);
-  world.add(mesh);
-}
-scene.add(world);
-const robot = new THREE.Group();
-const links = data.links.map((link, i) => {
-  const group = new THREE.Group();
-  group.matrixAutoUpdate = false;
-  for (const s of link.shapes) {
-    const mesh = meshOf(s.shape, i % 2 ? 0x4f81bd : 0x8eb4e3, 1.0);
-    place(mesh, s.origin);
-    group.add(mesh);
-  }
-  robot.add(group);
-  return group;
-});
-scene.add(robot);
-const frames = data.frames;
-const slider = document.getElementById('frame');
-slider.max = Math.max(frames.length - 1, 0);
-slider.disabled = frames.length < 2;
-function show(k) {
-  if (frames.length === 0) {
-    document.getElementById('label').textContent = 'no states';
-    return;
-  }
-  links.forEach((g, i) => g.matrix.fromArray(frames[k][i]));
-  document.getElementById('label').textContent = 'state ' + (k + 1) + ' / ' + frames.length;
-}
-// Camera and floor grid fitted to the bounding box of the obstacles and of the robot along the
-// whole path.
-const box = new THREE.Box3().setFromObject(world);
-const step = Math.max(1, Math.floor(frames.length / 30));
-for (let k = 0; k < frames.length; k += step) {
-  show(k);
-  box.expandByObject(robot);
-}
-if (frames.length > 0) {
-  show(frames.length - 1);
-  box.expandByObject(robot);
-}
-if (box.isEmpty()) box.set(new THREE.Vector3(-0.5, -0.5, 0), new THREE.Vector3(0.5, 0.5, 1));
-const center = box.getCenter(new THREE.Vector3());
-const extent = Math.max(Math.abs(box.min.x), Math.abs(box.max.x),
-                        Math.abs(box.min.y), Math.abs(box.max.y));
-const gridSize = Math.max(2, 2 * Math.ceil(extent + 0.25));
-const grid = new THREE.GridHelper(gridSize, gridSize <= 20 ? gridSize * 10 : gridSize,
-                                  0xbbbbbb, 0xdddddd);
-grid.rotation.x = Math.PI / 2;  // the z = 0 plane
-scene.add(grid);
-// Looking at the box's centre from the front right, above, just far enough to see all 8 corners.
-const viewDirection = new THREE.Vector3(1, -1, 0.7).normalize();
-function fitCamera() {
-  const tanV = Math.tan(camera.fov * Math.PI / 360), tanH = tanV * camera.aspect;
-  const right = new THREE.Vector3().crossVectors(camera.up, viewDirection).normalize();
-  const up = new THREE.Vector3().crossVectors(viewDirection, right);
-  let distance = 0.05;
-  for (let i = 0; i < 8; ++i) {
-    const c = new THREE.Vector3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y,
-                                i & 4 ? box.max.z : box.min.z).sub(center);
-    distance = Math.max(distance, c.dot(viewDirection) +
-                        Math.max(Math.abs(c.dot(right)) / tanH, Math.abs(c.dot(up)) / tanV));
-  }
-  distance *= 1.05;
-  const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 0.05);
-  controls.target.copy(center);
-  camera.position.copy(center).addScaledVector(viewDirection, distance);
-  camera.near = distance / 100;
-  camera.far = distance + 20 * radius;
-  camera.updateProjectionMatrix();
-  controls.update();
-}
-let playing = frames.length > 1;
-document.getElementById('play').onclick = () => { playing = !playing; };
-slider.oninput = () => { playing = false; show(+slider.value); };
-renderer.domElement.ondblclick = fitCamera;
-function resize() {
-  const w = window.innerWidth, h = Math.max(window.innerHeight - 40, 1);
-  renderer.setSize(w, h);
-  camera.aspect = w / h;
-  camera.updateProjectionMatrix();
-}
-window.addEventListener('resize', resize);
-resize();
-fitCamera();
-let k = 0, last = 0;
-function animate(t) {
-  requestAnimationFrame(animate);
-  if (playing && t - last > 40) {
-    last = t;
-    k = (k + 1) % frames.length;
-    slider.value = k;
-    show(k);
-  }
-  renderer.render(scene, camera);
-}
-show(0);
-requestAnimationFrame(animate);
-)JS";
 
 }  // namespace
 
@@ -321,17 +195,11 @@ void write_html_viewer(const std::string& file, const std::string& title, const 
   const std::string heading = html_escaped(title);
   std::ofstream out(file);
   if (!out) throw InputError("viewer '" + file + "': cannot write");
-  out << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << heading
-      << "</title>\n<style>body{margin:0;font-family:sans-serif}"
-         "#bar{height:40px;display:flex;align-items:center;gap:12px;padding:0 12px}"
-         "#frame{flex:1}canvas{display:block}</style></head>\n<body>\n<div id=\"bar\">"
-         "<button id=\"play\">play / pause</button>"
-         "<input id=\"frame\" type=\"range\" min=\"0\" value=\"0\"><span id=\"label\"></span>"
-         "<span title=\"drag: rotate, right-drag: pan, wheel: zoom, double-click: fit the view\">"
-      << heading << "</span></div>\n<script id=\"data\" type=\"application/json\">"
-      << script_safe(e.c_str()) << "</script>\n<script>\n"
-      << three << "\n</script>\n<script>\n"
-      << orbit << "\n</script>\n<script>" << kScript << "</script>\n</body></html>\n";
+  const std::string data = script_safe(e.c_str());
+  const std::string page = filled_page(
+      viewer_page(),
+      {{"title", heading}, {"data", data}, {"three.js", three}, {"OrbitControls.js", orbit}});
+  out << page;
   if (!out) throw InputError("viewer '" + file + "': write failed");
 }
 
