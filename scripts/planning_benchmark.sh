@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Planning benchmark (issue 5): every MotionBenchMaker Panda and UR5 problem in
+# Planning benchmark: every MotionBenchMaker Panda and UR5 problem in
 # ../shared/benchmarks/mbm, RRTConnect with hullcheck's validity checker and with an FCL-based
 # checker on the same shapes, in the same run (tests/benchmarks/bench_planning.cpp). Not part of
 # CI. Writes per-shard CSVs and logs to build-bench/planning/ and the tables to

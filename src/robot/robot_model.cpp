@@ -299,12 +299,14 @@ void RobotModel::set_link_padding(const std::string& link, double padding) {
   check_padding("robot '" + name_ + "': link '" + link + "'", padding);
   link_padding_[link] = padding;
   apply_padding();
+  ++padding_revision_;
 }
 
 void RobotModel::set_default_padding(double padding) {
   check_padding("robot '" + name_ + "': default", padding);
   default_padding_ = padding;
   apply_padding();
+  ++padding_revision_;
 }
 
 void RobotModel::apply_padding() {

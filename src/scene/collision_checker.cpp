@@ -9,6 +9,7 @@
 #include <hullcheck/scene/collision_checker.hpp>
 #include <limits>
 #include <map>
+#include <stdexcept>
 
 #include "collision_checker_internals.hpp"
 
@@ -87,6 +88,7 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
   build_groups();
   build_environment_pairs(link_object_allowed);
   // Link depths, from the root down the tree.
+  padding_revision_ = model_->padding_revision();
   link_depth_.assign(model_->links().size(), 0);
   std::vector<int> stack;
   for (int l = 0; l < static_cast<int>(model_->links().size()); ++l) {
@@ -278,7 +280,16 @@ void CollisionChecker::build_environment_pairs(
   }
 }
 
+void CollisionChecker::require_current_padding() const {
+  if (model_->padding_revision() != padding_revision_) {
+    throw std::logic_error("CollisionChecker: robot '" + model_->name() +
+                           "': its padding changed after the checker was built (the bounding "
+                           "volumes hold the old one); build a new checker");
+  }
+}
+
 void CollisionChecker::place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const {
+  require_current_padding();
   if (link_poses.size() != model_->links().size()) {
     throw InputError("CollisionChecker: got " + std::to_string(link_poses.size()) +
                      " link poses, robot '" + model_->name() + "' has " +

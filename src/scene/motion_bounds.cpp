@@ -228,6 +228,7 @@ double CollisionChecker::motion_bound(const Eigen::Ref<const Eigen::VectorXd>& q
   model_->check_configuration(q0);
   model_->check_configuration(q1);
   // prismatic_excess_motion: shapes below a prismatic joint beyond its limits.
+  require_current_padding();
   const double bound =
       (q1 - q0).cwiseAbs().dot(motion_levers().lever) + prismatic_excess_motion(q0, q1);
   return has_self_pairs_ ? 2.0 * bound : bound;

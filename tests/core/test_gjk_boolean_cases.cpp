@@ -1,4 +1,4 @@
-// Unit tests of the boolean GJK (detail/gjk_boolean.hpp), the seed's algorithm 2 (A. Casalino,
+// Unit tests of the boolean GJK (detail/gjk_boolean.hpp), Casalino's algorithm 2 (A. Casalino,
 // "How to use the GJK_EPA class", 2019): its plex updates for case a (segment), case b
 // (triangular facet) and case c (tetrahedron, enclosing test of eq. 26-28) called directly on
 // hand-placed simplices, then the whole loop on box cores: "collision absent" when <D, P*> < 0
@@ -102,7 +102,7 @@ TEST(GjkBooleanCaseB, EveryRegionOfTheNewestVertex) {
 
 // Case c: tetrahedron with apex a (newest) over the base b, c, d wound to face it. Origin
 // inside: enclosed. Origin beyond one of the faces through a (abc, acd, adb): not enclosed, the
-// simplex reduced to that face's three vertices and d along its outward normal. The seed's
+// simplex reduced to that face's three vertices and d along its outward normal. Casalino's
 // claim that face bcd cannot be the nearest is the precondition, not tested.
 TEST(GjkBooleanCaseC, EnclosedOrBeyondAFaceThroughTheApex) {
   const Vector3d ref[4] = {Vector3d(0, 0, 2), Vector3d(-1, -1, -1), Vector3d(2, -1, -1),

@@ -1,5 +1,5 @@
 // Unit tests of GJK (detail/gjk.hpp, detail/gjk_boolean.hpp) on hand-built Minkowski differences
-// of point, segment and box cores, following the seed (A. Casalino, "How to use the GJK_EPA
+// of point, segment and box cores, following Casalino ("How to use the GJK_EPA
 // class", 2019): the plex update cases a (segment), b (triangular facet) and c (tetrahedron),
 // algorithm 1 (closest region) and algorithm 2 (boolean test: "collision absent" on <D, P*> < 0,
 // "collision detected" on an enclosing tetrahedron). Every expected distance, closest point and
@@ -86,7 +86,7 @@ struct CrossedEdges {
   Vector3d point_b() const { return (s2 + gap) * h1 + 0.3 * Vector3d::UnitZ(); }
 };
 
-// Case a, vertex region (seed eq. 18): corner against corner, the plex ends as one point made
+// Case a, vertex region (Casalino eq. 18): corner against corner, the plex ends as one point made
 // of A's corner 7 (+,+,+) and B's corner 0 (-,-,-).
 TEST(GjkCaseA, CornerToCornerEndsOnOneVertex) {
   const BoxCore a{Vector3d(1, 1, 1)}, b{Vector3d(0.5, 0.5, 0.5)};
@@ -102,7 +102,7 @@ TEST(GjkCaseA, CornerToCornerEndsOnOneVertex) {
   EXPECT_EQ(out.simplex.index_b[0], 0);
 }
 
-// Case a, segment interior (seed eq. 16): a point against a segment (a sphere's core against a
+// Case a, segment interior (Casalino eq. 16): a point against a segment (a sphere's core against a
 // capsule's) lying along x at (0.4, 2, 0): nearest (0, 2, 0), weights 0.7 / 0.3 on its ends.
 TEST(GjkCaseA, PointAgainstSegmentEndsOnTheSegment) {
   const PointCore a;
@@ -119,7 +119,7 @@ TEST(GjkCaseA, PointAgainstSegmentEndsOnTheSegment) {
   EXPECT_NEAR(out.simplex.lambda[far_end], 0.3, 1e-12);
 }
 
-// Case b, facet interior (seed eq. 22): a point below a box face, off its centre so that the
+// Case b, facet interior (Casalino eq. 22): a point below a box face, off its centre so that the
 // nearest point lies on no diagonal; and crossed box edges, whose difference is a parallelogram.
 TEST(GjkCaseB, FacetInteriorPointAndCrossedEdges) {
   const PointCore p;
@@ -156,7 +156,7 @@ TEST(GjkCaseB, FaceAgainstFace) {
   EXPECT_NEAR(out.simplex.point_b().x(), 2.5, 1e-12);
 }
 
-// Case c, origin enclosed (seed eq. 26-28): overlapping boxes end on a tetrahedron of support
+// Case c, origin enclosed (Casalino eq. 26-28): overlapping boxes end on a tetrahedron of support
 // points whose barycentric coordinates of the origin (solved here) are all positive.
 TEST(GjkCaseC, OverlappingBoxesEncloseTheOrigin) {
   const BoxCore a{Vector3d(1, 1, 1)}, b{Vector3d(0.5, 0.7, 0.9)};

@@ -1,4 +1,4 @@
-// Poses: X-Y-Z angles (seed eq. 38) and validation of poses given to queries.
+// Poses: X-Y-Z angles (Casalino eq. 38) and validation of poses given to queries.
 #include <gtest/gtest.h>
 
 #include <hullcheck/core.hpp>

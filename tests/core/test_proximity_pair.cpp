@@ -1,4 +1,4 @@
-// ProximityPair: seed section 4 state machine, caching, invalidation and warm start.
+// ProximityPair: Casalino section 4 state machine, caching, invalidation and warm start.
 #include <gtest/gtest.h>
 
 #include <hullcheck/core.hpp>

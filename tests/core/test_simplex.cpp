@@ -54,7 +54,7 @@ void expect_sub(const SubSimplex& sub, const std::vector<Vector3d>& p, const Exp
   EXPECT_NEAR(combined.squaredNorm(), expected_distance_squared, 1e-12);
 }
 
-// Case a (segment) in its three regions, including the one the seed calls impossible
+// Case a (segment) in its three regions, including the one Casalino calls impossible
 // (s_optimum >= 1, beyond the older vertex): the solver must not rely on temporal order.
 TEST(SimplexSegment, EveryVoronoiRegion) {
   const std::vector<Vector3d> ref = {Vector3d(0, 0, 0), Vector3d(4, 0, 0)};
@@ -160,7 +160,7 @@ TEST(SimplexTriangle, DegenerateTriangles) {
 }
 
 // Case c (tetrahedron (0,0,0),(1,0,0),(0,1,0),(0,0,1)): interior, the four faces (the one
-// opposite the newest vertex 3 included, which the seed excludes), six edges, four vertices.
+// opposite the newest vertex 3 included, which Casalino excludes), six edges, four vertices.
 TEST(SimplexTetrahedron, EveryVoronoiRegion) {
   const std::vector<Vector3d> ref = {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0),
                                      Vector3d(0, 0, 1)};
@@ -230,12 +230,11 @@ TEST(SimplexTetrahedron, DegenerateTetrahedra) {
   ASSERT_EQ(r.size, 3);
 }
 
-// KNOWN FAILURE (reported, not fixed here): a flat tetrahedron (coplanar to rounding) whose
-// plane passes through the origin, with the origin inside it. The signed volumes are all
-// rounding noise (det 7.6e-17), so their signs skip the faces around the origin: the answer
-// is edge 01 at distance 0.19 instead of ~0 (faces 123 and 013 reach 7e-18). Random such
-// inputs fail ~8% of the time, and still with the origin up to ~1e-12 off the plane.
-TEST(SimplexTetrahedron, DISABLED_FlatThroughTheOriginWithRoundingNoise) {
+// A flat tetrahedron (coplanar to rounding) whose plane passes through the origin, with the
+// origin inside it. Its signed volumes are all rounding noise (det 7.6e-17): their signs once
+// skipped the faces around the origin and answered edge 01 at distance 0.19 instead of ~0
+// (faces 123 and 013 reach 7e-18); random such inputs failed ~8% of the time.
+TEST(SimplexTetrahedron, FlatThroughTheOriginWithRoundingNoise) {
   const Vector3d p[4] = {
       Vector3d(-0.080498497668783392, -0.13171913363678572, -0.60369338909288461),
       Vector3d(0.45424853983837432, 0.073493457520301231, 0.52231680064752706),
@@ -243,6 +242,28 @@ TEST(SimplexTetrahedron, DISABLED_FlatThroughTheOriginWithRoundingNoise) {
       Vector3d(-0.65697702577726114, 0.043525915890058969, -0.11026379337594133)};
   EXPECT_LT(oracle::point_triangle_distance(Vector3d::Zero(), p[1], p[2], p[3]), 1e-15);
   EXPECT_LT(closest_on_tetrahedron(p).distance_squared, 1e-24);
+}
+
+// Random flat tetrahedra in planes through (or within 1e-13 of) the origin: the distance is
+// the smallest over the four faces (Ericson's point-triangle distance), to the flat limit.
+TEST(SimplexTetrahedron, RandomFlatThroughTheOrigin) {
+  oracle::Rng rng(77);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vector3d u = rng.in_box(1.0).normalized();
+    Vector3d v = rng.in_box(1.0);
+    v = (v - v.dot(u) * u).normalized();
+    const Vector3d offset = (trial % 2 == 0 ? 0.0 : 1e-13) * u.cross(v);
+    Vector3d p[4];
+    for (Vector3d& q : p) q = rng.in_box(1.0)[0] * u + rng.in_box(1.0)[1] * v + offset;
+    double expected = INFINITY;
+    const int faces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+    for (const auto& f : faces) {
+      expected = std::min(
+          expected, oracle::point_triangle_distance(Vector3d::Zero(), p[f[0]], p[f[1]], p[f[2]]));
+    }
+    EXPECT_NEAR(std::sqrt(closest_on_tetrahedron(p).distance_squared), expected, 1e-11)
+        << "trial " << trial;
+  }
 }
 
 // Random simplices of 2, 3 and 4 vertices against independent oracles (clamped projection,

@@ -15,10 +15,10 @@
 #include <hullcheck/core/errors.hpp>
 #include <hullcheck/ompl/joint_state_space.hpp>
 #include <hullcheck/robot/allowed_collision_matrix.hpp>
-#include <hullcheck/scene/collision_matrix_generation.hpp>
 #include <hullcheck/robot/mesh_file.hpp>
 #include <hullcheck/robot/robot_model.hpp>
 #include <hullcheck/robot/srdf.hpp>
+#include <hullcheck/scene/collision_matrix_generation.hpp>
 #include <hullcheck/scene/planning_scene.hpp>
 #include <limits>
 #include <memory>

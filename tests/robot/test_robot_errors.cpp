@@ -1,5 +1,5 @@
 // Bad robot input: every case is an InputError whose message names the file, the element and
-// the problem (acceptance checks of issue 3). Never a crash, never a silent wrong model.
+// the problem. Never a crash, never a silent wrong model.
 #include <gtest/gtest.h>
 
 #include <chrono>

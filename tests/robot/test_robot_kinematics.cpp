@@ -1,4 +1,4 @@
-// Robot kinematics (issue 3): forward kinematics against KDL (kdl_parser's tree of the same
+// Robot kinematics: forward kinematics against KDL (kdl_parser's tree of the same
 // URDF), the configuration order against an independent depth-first walk of the URDF (parsed here
 // with tinyxml2), mimic joints, limits and the default configuration, and the allocation-free
 // forward kinematics.

@@ -1,4 +1,4 @@
-// Robot loading (issue 3): what RobotModel makes of a URDF, checked against independent readings
+// Robot loading: what RobotModel makes of a URDF, checked against independent readings
 // of the same files: the URDF parsed here with tinyxml2 (element counts, geometry, origins), the
 // meshes read here with assimp (every collision hull is the convex hull of its mesh's vertices
 // after the URDF scale, mirrored scales included), package:// resolution through every search

@@ -1,4 +1,4 @@
-// CollisionChecker (issue 4) against independent answers:
+// CollisionChecker against independent answers:
 //  - FCL 0.7 (oracles/fcl_checker: the same hulls and primitives as FCL objects, its own pair
 //    list from the same matrix and scene): validity and clearance on random states of the
 //    MotionBenchMaker problems (Panda, UR5), every family;

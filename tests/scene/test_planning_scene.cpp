@@ -1,4 +1,4 @@
-// Planning scenes (issue 4): MotionBenchMaker scenes and requests against an independent
+// Planning scenes: MotionBenchMaker scenes and requests against an independent
 // yaml-cpp reading composed by hand, constructed MoveIt YAML (every primitive, meshes, robot-link
 // frames posed by KDL, map-style poses, multi-primitive objects, allowed-collision entries),
 // error messages, and URDF environments placed where KDL's forward kinematics says.

@@ -194,15 +194,23 @@ TEST(SelfCollision, CylinderAnalytic) {
   }
 }
 
-TEST(SelfCollision, PaddingChangedAfterConstructionIsUsed) {
+// The checker's bounding volumes hold the padding it was built with: after a change, its
+// queries refuse to answer (a stale ball could call a colliding state free), and a new checker
+// uses the new padding.
+TEST(SelfCollision, PaddingChangedAfterConstructionNeedsANewChecker) {
   auto owned = std::make_shared<RobotModel>(RobotModel::from_urdf_string(kTwoSpheres, "."));
   const CollisionChecker checker(owned, AllowedCollisionMatrix(2));
   EXPECT_NEAR(checker.clearance(q1(0.5)).distance, 0.2, kTol);
   owned->set_default_padding(0.05);
-  EXPECT_NEAR(checker.clearance(q1(0.5)).distance, 0.1, kTol);
-  EXPECT_TRUE(!checker.is_valid(q1(0.39)));
+  EXPECT_THROW(checker.is_valid(q1(0.39)), std::logic_error);
+  EXPECT_THROW(checker.clearance(q1(0.5)), std::logic_error);
+  EXPECT_THROW(checker.motion_bound(q1(0.0), q1(0.1)), std::logic_error);
+  const CollisionChecker padded(owned, AllowedCollisionMatrix(2));
+  EXPECT_NEAR(padded.clearance(q1(0.5)).distance, 0.1, kTol);
+  EXPECT_TRUE(!padded.is_valid(q1(0.39)));
   owned->set_link_padding("ball", 0.0);
-  EXPECT_NEAR(checker.clearance(q1(0.5)).distance, 0.15, kTol);
+  const CollisionChecker repadded(owned, AllowedCollisionMatrix(2));
+  EXPECT_NEAR(repadded.clearance(q1(0.5)).distance, 0.15, kTol);
 }
 
 // ---------------------------------------------------------------- several links

@@ -7,7 +7,7 @@
 namespace hullcheck {
 
 /// Rotation from X-Y-Z angles (radians): R = Rx(gx) * Ry(gy) * Rz(gz), i.e. rotate about x, then
-/// about the new y, then about the new z (seed appendix B, eq. 38).
+/// about the new y, then about the new z (Casalino appendix B, eq. 38).
 Eigen::Matrix3d rotation_from_xyz_angles(double gx, double gy, double gz);
 
 /// Pose with translation `position` (metres) and rotation_from_xyz_angles(angles).

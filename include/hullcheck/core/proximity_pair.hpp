@@ -1,4 +1,4 @@
-// ProximityPair: two shapes and their poses, with cached, warm-started queries (seed section 4).
+// ProximityPair: two shapes and their poses, with cached, warm-started queries (Casalino §4).
 #pragma once
 
 #include <hullcheck/core/queries.hpp>
@@ -8,8 +8,8 @@
 namespace hullcheck {
 
 /// A pair of shapes A and B with poses, answering collision, distance, penetration and signed
-/// distance in any order. Results are cached until a shape or pose is set again (seed figure 14:
-/// the collision verdict, distance and penetration each computed at most once per
+/// distance in any order. Results are cached until a shape or pose is set again (Casalino figure
+/// 14: the collision verdict, distance and penetration each computed at most once per
 /// configuration, and one GJK run shared between them). Setting only a pose keeps the warm start:
 /// GJK starts from the last separating direction and hull support vertices, so a slightly moved
 /// pose converges in fewer iterations.
@@ -20,10 +20,10 @@ class ProximityPair {
  public:
   explicit ProximityPair(const QueryOptions& options = {}) : options_(options) {}
 
-  /// Shape with the identity pose (local frame = world frame; seed Set_shape_A).
+  /// Shape with the identity pose (local frame = world frame; Casalino's Set_shape_A).
   void set_shape_a(const Shape& shape) { set_shape_a(shape, Eigen::Isometry3d::Identity()); }
   void set_shape_a(const Shape& shape, const Eigen::Isometry3d& pose);
-  /// Shape placed at `position` with X-Y-Z angles (radians), seed Set_shape_A_transformed.
+  /// Shape placed at `position` with X-Y-Z angles (radians), Casalino's Set_shape_A_transformed.
   void set_shape_a(const Shape& shape, const Eigen::Vector3d& position,
                    const Eigen::Vector3d& xyz_angles);
   void set_shape_b(const Shape& shape) { set_shape_b(shape, Eigen::Isometry3d::Identity()); }

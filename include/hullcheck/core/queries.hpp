@@ -17,16 +17,16 @@
 
 namespace hullcheck {
 
-/// True when A and B overlap or touch (GJK, seed algorithm 2, exiting early on a separating
+/// True when A and B overlap or touch (GJK, Casalino algorithm 2, exiting early on a separating
 /// direction). Verdicts are exact outside the tolerance band of QueryOptions.
 bool intersect(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                const Eigen::Isometry3d& pose_b, const QueryOptions& options = {});
 
-/// Separation distance and closest points (GJK, seed eq. 29-31). Distance 0 when overlapping.
+/// Separation distance and closest points (GJK, Casalino eq. 29-31). Distance 0 when overlapping.
 DistanceResult distance(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                         const Eigen::Isometry3d& pose_b, const QueryOptions& options = {});
 
-/// Penetration depth, direction and witness points (GJK then EPA, seed eq. 32-35).
+/// Penetration depth, direction and witness points (GJK then EPA, Casalino eq. 32-35).
 /// Depth 0 and zero normal when the shapes are apart.
 PenetrationResult penetration(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                               const Eigen::Isometry3d& pose_b, const QueryOptions& options = {});

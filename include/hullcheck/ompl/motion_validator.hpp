@@ -41,7 +41,8 @@ class GuaranteedMotionValidator : public ::ompl::base::MotionValidator {
   unsigned long step_count() const { return steps_.load(); }
 
  private:
-  /// Advances from s1 towards s2; returns the reached fraction (1 when free) and whether free.
+  /// Advances from s1 towards s2: true when the whole motion is certified free; `last_free`
+  /// receives the fraction of the motion in [0, 1] certified free from s1 (1 when free).
   bool advance(const ::ompl::base::State* s1, const ::ompl::base::State* s2,
                double* last_free) const;
 

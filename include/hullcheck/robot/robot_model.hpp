@@ -220,6 +220,9 @@ class RobotModel {
   /// Not thread-safe with concurrent queries on this model.
   void set_link_padding(const std::string& link, double padding);
   void set_default_padding(double padding);
+  /// How many times the padding was set since loading: objects built from the padded shapes
+  /// (CollisionChecker's bounding volumes) compare it to detect a stale copy.
+  int padding_revision() const { return padding_revision_; }
 
  private:
   // One step of forward kinematics, in link order (parents first):
@@ -252,6 +255,7 @@ class RobotModel {
   std::map<std::string, int> joint_by_name_;
   std::map<std::string, double> link_padding_;
   double default_padding_ = 0.0;
+  int padding_revision_ = 0;
 };
 
 }  // namespace hullcheck

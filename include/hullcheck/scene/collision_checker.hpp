@@ -47,6 +47,8 @@ struct ClearanceResult {
 /// convex pieces (RobotLoadOptions::mesh_geometry), its mesh's hull before its pieces (it
 /// contains them: a clear hull clears them all, and its distance bounds theirs); exact GJK/EPA
 /// (core queries, their tolerances) for the survivors. Pieces of one link are never paired.
+/// The padding is the model's at construction: after RobotModel::set_link_padding or
+/// set_default_padding, queries throw std::logic_error (build a new checker).
 /// All query methods are const and thread-safe: scratch storage is per thread, allocated on a
 /// thread's first call and reused, so queries do not allocate after that.
 class CollisionChecker {
@@ -244,6 +246,9 @@ class CollisionChecker {
   std::vector<EnvironmentBlock> blocks_;
   bool has_self_pairs_ = false;
   std::vector<int> link_depth_;  // per link: joints between it and the root
+  int padding_revision_ = 0;     // the model's when the bounding volumes were computed
+  /// Throws std::logic_error when the model's padding changed since construction.
+  void require_current_padding() const;
   // The lever arms of motion_bound and safe_advance, built on first use (their size grows with
   // shapes x configuration values, too large for long chains that never need them); shared by
   // copies (they depend only on what copies share).

@@ -1,5 +1,6 @@
-// GJK (Gilbert-Johnson-Keerthi) on the Minkowski difference of two cores: seed algorithms 1
-// (closest point) and 2 (boolean test with early exit on a separating direction).
+// GJK (Gilbert-Johnson-Keerthi) on the Minkowski difference of two cores: Casalino algorithm 1
+// (the closest point, §2.2), with goals that stop it early. Algorithm 2, the boolean test, is
+// gjk_boolean.hpp.
 #pragma once
 
 #include <hullcheck/core/query_result.hpp>
@@ -26,12 +27,8 @@ struct GjkOutput {
   int iterations = 0;
 };
 
-/// Runs GJK. `v0` is the initial search point (any vector; the warm start's last separating
-/// direction or the vector between the shapes' origins). `radius` is the sum of the shapes'
-/// radii (boolean goal: shapes overlap when the core distance is <= radius). `tolerance` is the
-/// absolute convergence tolerance. Never more than `max_iterations` support calls.
 /// Reduces simplex `s` (its newest vertex last) to the sub-simplex nearest the origin and sets
-/// its weights (seed cases a, b, c). Returns false when the origin is inside a tetrahedron.
+/// its weights (Casalino §2 cases a, b, c). Returns false when the origin is inside a tetrahedron.
 inline bool reduce_simplex(Simplex& s) {
   SubSimplex sub;
   switch (s.size) {
@@ -64,8 +61,12 @@ inline bool reduce_simplex(Simplex& s) {
   return s.size < 4;
 }
 
-/// `initial` (optional, warm start): a simplex of support points to start from instead of
-/// the single point in direction -v. `stop_distance`: once the core distance is proven to be
+/// Runs GJK. `v` is the initial search point (any vector; the warm start's last separating
+/// direction or the vector between the shapes' ball centres). `radius` is the sum of the
+/// shapes' radii (boolean goal: shapes overlap when the core distance is <= radius).
+/// `tolerance` is the absolute convergence tolerance. Never more than `max_iterations` support
+/// calls. `initial` (optional, warm start): a simplex of support points to start from instead
+/// of the single point in direction -v. `stop_distance`: once the core distance is proven to be
 /// at least this, GJK stops with status kAboveCutoff (lower_bound holds the proof).
 template <class MD>
 GjkOutput gjk(MD& md, Eigen::Vector3d v, double radius, double tolerance, int max_iterations,

@@ -1,9 +1,9 @@
-// Boolean GJK (seed algorithm 2): does the core difference A - B contain the origin, or is it
+// Boolean GJK (Casalino algorithm 2): does the core difference A - B contain the origin, or is it
 // farther from it than the shapes' radius? Only search directions are kept, no barycentric
 // coordinates, so an iteration costs little more than its support call. Each verdict is proven:
 //  - apart: a support point w with d.w < -radius |d| gives a plane separating the origin from
-//    the difference by more than radius (seed: "collision absent" when <D, P*> < 0);
-//  - overlapping: the origin lies inside a tetrahedron of support points (seed eq. 26-28).
+//    the difference by more than radius (Casalino: "collision absent" when <D, P*> < 0);
+//  - overlapping: the origin lies inside a tetrahedron of support points (Casalino eq. 26-28).
 // When neither is proven (touching contact, margins within reach, iteration cap) the caller
 // falls back to the distance GJK, whose tolerance model decides.
 #pragma once
@@ -29,7 +29,7 @@ inline Eigen::Vector3d triple(const Eigen::Vector3d& a, const Eigen::Vector3d& b
   return a.cross(b).cross(c);
 }
 
-/// Seed case a on segment (s[0] newest, s[1]): updates the simplex and the direction.
+/// Casalino case a on segment (s[0] newest, s[1]): updates the simplex and the direction.
 template <class V>
 void line(V* s, int& n, Eigen::Vector3d& d) {
   const Eigen::Vector3d& a = s[0].w;
@@ -43,7 +43,7 @@ void line(V* s, int& n, Eigen::Vector3d& d) {
   }
 }
 
-/// Seed case b on triangle (s[0] newest, s[1], s[2]).
+/// Casalino case b on triangle (s[0] newest, s[1], s[2]).
 template <class V>
 void triangle(V* s, int& n, Eigen::Vector3d& d) {
   const Eigen::Vector3d a = s[0].w;
@@ -74,7 +74,7 @@ void triangle(V* s, int& n, Eigen::Vector3d& d) {
   }
 }
 
-/// Seed case c on tetrahedron (s[0] newest, then a triangle whose winding faces s[0]).
+/// Casalino case c on tetrahedron (s[0] newest, then a triangle whose winding faces s[0]).
 /// Returns true when the origin is enclosed.
 template <class V>
 bool tetrahedron(V* s, int& n, Eigen::Vector3d& d) {

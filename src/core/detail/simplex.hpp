@@ -1,12 +1,12 @@
-// The GJK simplex ("plex" in the seed) and its closest point to the origin.
+// The GJK simplex ("plex" in Casalino §2) and its closest point to the origin.
 //
-// The seed's update cases a (segment), b (triangle) and c (tetrahedron) are implemented with
+// Casalino's update cases a (segment), b (triangle) and c (tetrahedron) are implemented with
 // signed volumes (sub-determinants of the projected simplex), which decide the closest region
 // by signs of quantities computed directly from the vertices, instead of by differences of
 // squared distances. This keeps the region choice consistent on near-degenerate simplices
 // (slivers, needles), where the classic formulas lose all significant digits. Every region
 // whose sign test fails is evaluated, so the answer does not depend on the temporal-order
-// assumption of the seed (which rounding can violate).
+// assumption of Casalino §2 (which rounding can violate).
 #pragma once
 
 #include <Eigen/Core>
@@ -168,10 +168,18 @@ inline SubSimplex closest_on_tetrahedron(const Eigen::Vector3d* p) {
                               -s0.dot(s1.cross(s2))};
   const double det = cofactor[0] + cofactor[1] + cofactor[2] + cofactor[3];
   const int faces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  // Each cofactor carries rounding of order eps |s|^3: a tetrahedron whose volume is within a
+  // few thousand times that is flat as far as the signs tell (a flat one through the origin
+  // has cofactors of pure noise, whose signs would pick a far region). It is then measured by
+  // all four faces: exact when the origin is outside, and within its thickness (below
+  // 1e-11 |s|, under every query tolerance) when inside.
+  const double reach_squared = std::max(std::max(s0.squaredNorm(), s1.squaredNorm()),
+                                        std::max(s2.squaredNorm(), s3.squaredNorm()));
+  const bool flat = det * det <= 1e-22 * reach_squared * reach_squared * reach_squared;
   SubSimplex best;
   best.size = 0;
   best.distance_squared = INFINITY;
-  bool inside = det != 0.0;
+  bool inside = !flat;
   bool outside[4];
   for (int j = 0; j < 4; ++j) {
     outside[j] = !same_sign(det, cofactor[j]);
@@ -187,7 +195,7 @@ inline SubSimplex closest_on_tetrahedron(const Eigen::Vector3d* p) {
     return best;
   }
   for (int j = 0; j < 4; ++j) {
-    if (det != 0.0 && !outside[j]) continue;
+    if (!flat && !outside[j]) continue;
     const SubSimplex f = closest_on_triangle(p, faces[j][0], faces[j][1], faces[j][2]);
     if (f.distance_squared < best.distance_squared) best = f;
   }
