@@ -121,7 +121,7 @@ const PenetrationResult& ProximityPair::penetration() {
   last_was_cached_ = true;
   if (!penetration_) {
     if (verdict_ == Verdict::kSeparated) {
-      penetration_ = PenetrationResult{};  // apart: depth 0 (seed figure 14, state 3)
+      penetration_ = PenetrationResult{};  // apart: depth 0 (design doc, figure 14, state 3)
       last_was_cached_ = false;
     } else {
       signed_distance();  // one GJK + EPA run fills penetration_ and the rest
