@@ -1,7 +1,8 @@
 // Fast paths of intersect() and penetration() without a warm start: the ball tests and the
 // boolean GJK's first iteration in the world frame (pairs settled there never build the relative
 // rotation), then the boolean GJK (design doc, algorithm 2) and EPA (algorithm 3) in A's frame.
-// When the boolean GJK cannot decide, the general engine (query_engine.hpp) takes over.
+// When the boolean GJK cannot decide, the general engine continues from its distance GJK
+// (query_engine.hpp, run_query_after_boolean) without repeating what was done here.
 #pragma once
 
 #include <hullcheck/core/query_options.hpp>
@@ -110,8 +111,8 @@ BooleanVerdict boolean_gjk_after(MD& md, const FirstSupport& first, double radiu
 }
 
 /// intersect() without a warm start: centre_line_prelude, then the boolean GJK in a small frame
-/// of its own, returning only the verdict; run_query (the distance GJK and its tolerance) only
-/// when they cannot decide.
+/// of its own, returning only the verdict; the general engine from its distance GJK on (and its
+/// tolerance) only when they cannot decide.
 template <class CoreA, class CoreB>
 bool run_intersect(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
                    const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
@@ -129,14 +130,15 @@ bool run_intersect(const CoreA& core_a, double radius_a, const Eigen::Isometry3d
   } else if (prelude != Prelude::kUndecided) {
     return prelude == Prelude::kOverlapping;
   }
-  return run_query(core_a, radius_a, pose_a, core_b, radius_b, pose_b, QueryKind::kIntersect,
-                   options, nullptr)
+  // The ball tests and the boolean GJK are done: the distance GJK decides.
+  return run_query_after_boolean(core_a, radius_a, pose_a, core_b, radius_b, pose_b,
+                                 QueryKind::kIntersect, options)
       .overlapping;
 }
 
 /// penetration() without a warm start: centre_line_prelude (no inner balls: the depth is
-/// needed), boolean GJK, EPA from its tetrahedron, in a frame of their own; run_query only when
-/// the boolean GJK cannot decide.
+/// needed), boolean GJK, EPA from its tetrahedron, in a frame of their own; the general engine
+/// from its distance GJK on only when the boolean GJK cannot decide.
 template <class CoreA, class CoreB>
 Answer run_penetration(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& pose_a,
                        const CoreB& core_b, double radius_b, const Eigen::Isometry3d& pose_b,
@@ -159,8 +161,9 @@ Answer run_penetration(const CoreA& core_a, double radius_a, const Eigen::Isomet
       return answer;
     }
   }
-  return run_query(core_a, radius_a, pose_a, core_b, radius_b, pose_b, QueryKind::kPenetration,
-                   options, nullptr);
+  // The ball test and the boolean GJK are done: the distance GJK decides.
+  return run_query_after_boolean(core_a, radius_a, pose_a, core_b, radius_b, pose_b,
+                                 QueryKind::kPenetration, options);
 }
 
 /// run_intersect on two shapes.

@@ -5,6 +5,8 @@
 // the query when it can prove the answer:
 //   ball tests -> warm-start simplex -> boolean stage -> distance GJK -> undecided-sign recovery
 //   -> result assembly.
+// run_query_after_boolean starts at the distance GJK, for the fast paths (fast_paths.hpp) that
+// ran the stages before it themselves.
 #pragma once
 
 #include <algorithm>
@@ -456,6 +458,26 @@ Answer run_query(const CoreA& core_a, double radius_a, const Eigen::Isometry3d& 
   }
   return distance_gjk_stage(md, v0, warm_simplex.size > 0 ? &warm_simplex : nullptr, radius_a,
                             radius_b, pose_a, tolerance, kind, options, warm, cutoff);
+}
+
+/// run_query (no warm start, no cutoff) from the distance GJK on, for an intersect or
+/// penetration query whose ball tests and boolean GJK have already run and left it undecided
+/// (fast_paths.hpp; their first support direction is run_query's, computed in the world frame).
+/// The pair is placed in A's frame exactly as run_query places it, so the distance GJK and all
+/// that follows see run_query's inputs.
+template <class CoreA, class CoreB>
+Answer run_query_after_boolean(const CoreA& core_a, double radius_a,
+                               const Eigen::Isometry3d& pose_a, const CoreB& core_b,
+                               double radius_b, const Eigen::Isometry3d& pose_b, QueryKind kind,
+                               const QueryOptions& options) {
+  const Eigen::Matrix3d rotation_a_t = pose_a.linear().transpose();
+  const Eigen::Vector3d offset_world = pose_b.translation() - pose_a.translation();
+  const Eigen::Vector3d centres = centres_in_a(core_a, core_b, pose_b, rotation_a_t, offset_world);
+  auto md = difference_in_a(core_a, core_b, pose_b, rotation_a_t, offset_world);
+  const double tolerance =
+      query_tolerance(core_a, radius_a, core_b, radius_b, md.translation, options);
+  return distance_gjk_stage(md, centres, nullptr, radius_a, radius_b, pose_a, tolerance, kind,
+                            options, nullptr, INFINITY);
 }
 
 /// run_query on two shapes.
