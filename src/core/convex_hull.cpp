@@ -5,6 +5,7 @@
 #include <hullcheck/core/limits.hpp>
 #include <string>
 
+#include "detail/hull_data.hpp"
 #include "detail/support.hpp"
 #include "qhull_wrapper.hpp"
 
@@ -136,7 +137,7 @@ ConvexHull::ConvexHull(const std::vector<Eigen::Vector3d>& points) {
   } catch (const std::runtime_error& e) {
     throw InputError(std::string("ConvexHull: cannot hull the point set: ") + e.what());
   }
-  auto data = std::make_shared<detail::HullData>();
+  auto data = std::make_shared<Data>();
   data->dimension = hull.dimension;
   std::sort(hull.ids.begin(), hull.ids.end());
   hull.ids.erase(std::unique(hull.ids.begin(), hull.ids.end()), hull.ids.end());
@@ -205,7 +206,7 @@ ConvexHull::ConvexHull(const std::vector<Eigen::Vector3d>& points) {
     // Valid only with the centre strictly inside (a bounding-box centre need not be).
     if (std::isfinite(inner) && inner > 0.0) data->inner_radius = inner * (1.0 - 1e-9);
   }
-  constexpr int kTableSize = 6 * detail::HullData::kCells * detail::HullData::kCells;
+  constexpr int kTableSize = 6 * Data::kCells * Data::kCells;
   data->start_table.resize(kTableSize);
   // Each cell's support vertex by climbing from the previous cell's (exact, and cheap for
   // hulls of many vertices); below the threshold the neighbour lists are not used, so scan.
@@ -225,6 +226,8 @@ std::size_t ConvexHull::vertex_count() const { return data_->vertices.size(); }
 int ConvexHull::dimension() const { return data_->dimension; }
 const std::vector<std::array<int, 3>>& ConvexHull::triangles() const { return data_->triangles; }
 double ConvexHull::extent() const { return data_->extent; }
+const Eigen::Vector3d& ConvexHull::bounding_ball_center() const { return data_->center; }
+double ConvexHull::bounding_ball_radius() const { return data_->outer_radius; }
 
 std::vector<int> ConvexHull::neighbors(int i) const {
   if (i < 0 || i >= static_cast<int>(vertex_count())) {

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "detail/query_engine.hpp"
+#include "detail/result_conversion.hpp"
 
 namespace hullcheck {
 

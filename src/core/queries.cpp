@@ -5,7 +5,9 @@
 #include <string>
 
 #include "detail/checks.hpp"
+#include "detail/fast_paths.hpp"
 #include "detail/query_engine.hpp"
+#include "detail/result_conversion.hpp"
 
 namespace hullcheck {
 

@@ -1,7 +1,7 @@
 #include <hullcheck/core/shape.hpp>
 
 #include "detail/checks.hpp"
-#include "detail/query_engine.hpp"
+#include "detail/cores.hpp"
 
 namespace hullcheck {
 

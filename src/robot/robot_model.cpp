@@ -324,9 +324,9 @@ void RobotModel::apply_padding() {
             std::make_shared<const Shape>(link.padding > 0.0 ? hull.inflated(link.padding) : hull);
       }
       if (s.unpadded.kind() == ShapeKind::kConvexHull) {
-        const auto& data = std::get<ConvexHull>(s.unpadded.geometry()).data();
-        s.bounding_center = data.center;
-        s.bounding_radius = data.outer_radius + s.shape.margin();
+        const ConvexHull& hull = std::get<ConvexHull>(s.unpadded.geometry());
+        s.bounding_center = hull.bounding_ball_center();
+        s.bounding_radius = hull.bounding_ball_radius() + s.shape.margin();
       } else {
         s.bounding_center.setZero();
         s.bounding_radius = s.shape.bounding_radius();

@@ -3,15 +3,10 @@
 
 #include <Eigen/Core>
 #include <array>
-#include <cstdint>
 #include <memory>
 #include <vector>
 
 namespace hullcheck {
-
-namespace detail {
-struct HullData;
-}
 
 /// Convex hull of a finite point set, in the points' own (local) frame.
 ///
@@ -51,46 +46,22 @@ class ConvexHull {
   Eigen::Vector3d support(const Eigen::Vector3d& direction) const;
   /// Index (into vertices()) of such a vertex.
   int support_index(const Eigen::Vector3d& direction) const;
+  /// A ball containing the hull: its centre (the vertices' bounding-box centre, local frame)
+  /// and radius (the largest distance of a vertex from it, rounded up).
+  const Eigen::Vector3d& bounding_ball_center() const;
+  double bounding_ball_radius() const;
 
-  const detail::HullData& data() const { return *data_; }
+  /// The hull's storage, laid out for the support function: opaque here, defined in the core's
+  /// private headers for the query engine.
+  struct Data;
+  const Data& data() const { return *data_; }
 
  private:
-  std::shared_ptr<const detail::HullData> data_;
+  std::shared_ptr<const Data> data_;
 };
 
 /// Volume, m^3, of the convex hull of `points` (qhull; no ConvexHull is built): 0 when the
 /// points are fewer than 4, coplanar or otherwise degenerate. Reentrant; allocates.
 double convex_hull_volume(const std::vector<Eigen::Vector3d>& points);
-
-namespace detail {
-/// Immutable hull storage, laid out for the support function.
-struct HullData {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<double> xs, ys, zs;  // vertices as structure of arrays, padded to a multiple of 4
-  /// Vertex adjacency along hull edges, laid out for hill climbing: vertex i's neighbours
-  /// (ascending) occupy slots [neighbour_slots[i], neighbour_slots[i+1]), an even count (padded
-  /// with i itself), with their indices in neighbour_index[slot] and their coordinates in one
-  /// block per vertex starting at neighbour_coords[3 * neighbour_slots[i]]: all x, then all y,
-  /// then all z.
-  std::vector<std::int32_t> neighbour_slots;
-  std::vector<std::int32_t> neighbour_index;
-  std::vector<double> neighbour_coords;
-  std::vector<std::array<int, 3>> triangles;
-  /// Hill-climbing starts: the support vertex for the centre direction of each cell of a cube
-  /// map (6 faces x kCells x kCells), so that a climb usually ends within a step or two.
-  static constexpr int kCells = 12;
-  std::vector<std::int32_t> start_table;
-  int vertex_count = 0;  // vertices.size(), kept as an int for the support function
-  int padded_count = 0;  // xs.size()
-  int dimension = 0;
-  double extent = 0.0;
-  /// Balls about the bounding-box centre: one containing the hull, and one inside it when the
-  /// centre is strictly inside (dimension 3), else inner_radius = -1 (no inner ball). Quick
-  /// proofs of separation and of overlap.
-  Eigen::Vector3d center{0, 0, 0};
-  double outer_radius = 0.0;
-  double inner_radius = -1.0;
-};
-}  // namespace detail
 
 }  // namespace hullcheck

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <hullcheck/core/convex_hull.hpp>
 
+#include "hull_data.hpp"
 #include "inline.hpp"
 
 namespace hullcheck::detail {
