@@ -349,6 +349,17 @@ const Eigen::Isometry3d& CollisionChecker::shape_pose(int shape, Scratch& s) con
   return s.shape_poses[i];
 }
 
+const Shape& CollisionChecker::shape_of(int shape) const {
+  const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
+  return model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape;
+}
+
+const Shape& CollisionChecker::bounding_shape(int shape) const {
+  const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
+  const CollisionShape& cs = model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)];
+  return cs.element_hull ? *cs.element_hull : cs.shape;
+}
+
 double CollisionChecker::box_gap(const ObstacleBox& box, const Eigen::Vector3d& c, double radius,
                                  Eigen::Vector3d* direction) const {
   const Eigen::Vector3d local = box.rotation_t * (c - box.center);
@@ -373,17 +384,6 @@ double CollisionChecker::box_gap(const ObstacleBox& box, const Eigen::Vector3d& 
   // depth, the radius plus the centre's depth below the nearest face (-radius alone is no
   // bound: a deeper pair would be culled and clearance would report a shallower one).
   return (outside > 0.0 ? outside : excess.maxCoeff()) - radius;
-}
-
-const Shape& CollisionChecker::shape_of(int shape) const {
-  const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
-  return model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].shape;
-}
-
-const Shape& CollisionChecker::bounding_shape(int shape) const {
-  const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
-  const CollisionShape& cs = model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)];
-  return cs.element_hull ? *cs.element_hull : cs.shape;
 }
 
 }  // namespace hullcheck

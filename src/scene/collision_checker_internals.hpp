@@ -3,6 +3,8 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <hullcheck/scene/collision_checker.hpp>
 #include <mutex>

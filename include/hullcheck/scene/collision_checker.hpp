@@ -220,8 +220,9 @@ class CollisionChecker {
   const Eigen::Isometry3d& shape_pose(int shape, Scratch& s) const;
   /// Centre (model frame) of robot shape `shape`'s ball at the current query's poses.
   const Eigen::Vector3d& center(int shape, Scratch& s) const;
-  /// clearance() at the shapes placed by place().
+  /// clearance() at the shapes placed by place() (clearance_search.cpp).
   ClearanceResult nearest_pair(Scratch& s) const;
+  struct NearestSearch;
   /// signed_distance_below(cutoff) of checked pair i (environment pairs first, then self pairs)
   /// at the shape poses of the current query.
   SignedDistanceResult pair_distance_below(std::size_t i, double cutoff, Scratch& s) const;
