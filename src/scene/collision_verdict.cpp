@@ -8,60 +8,23 @@
 
 namespace hullcheck {
 
-bool CollisionChecker::is_valid(const Eigen::Ref<const Eigen::VectorXd>& q) const {
-  model_->check_configuration(q);
-  Scratch& s = scratch();
-  model_->compute_link_poses_unchecked(q.data(), s.link_poses.data());
-  return is_valid_at(s.link_poses);
-}
-
-bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_poses) const {
-  Scratch& s = scratch();
-  place(link_poses, s);
-  for (const EnvironmentBlock& block : blocks_) {
-    if (environment_block_overlaps(block, s)) return false;
-  }
-  for (const SelfBlock& block : self_blocks_) {
-    if (self_block_overlaps(block, s)) return false;
-  }
-  return true;
-}
-
-void CollisionChecker::colliding_link_pairs_at(const std::vector<Eigen::Isometry3d>& link_poses,
-                                               std::vector<std::pair<int, int>>& out) const {
-  Scratch& s = scratch();
-  place(link_poses, s);
-  for (const SelfBlock& block : self_blocks_) {
-    if (self_block_overlaps(block, s)) {
-      out.emplace_back(link_balls_[static_cast<std::size_t>(block.link_a)].link,
-                       link_balls_[static_cast<std::size_t>(block.link_b)].link);
-    }
-  }
-}
-
-std::vector<std::pair<int, int>> CollisionChecker::checked_link_pairs() const {
-  std::vector<std::pair<int, int>> pairs;
-  pairs.reserve(self_blocks_.size());
-  for (const SelfBlock& block : self_blocks_) {
-    pairs.emplace_back(link_balls_[static_cast<std::size_t>(block.link_a)].link,
-                       link_balls_[static_cast<std::size_t>(block.link_b)].link);
-  }
-  return pairs;
-}
-
 namespace {
 
 // A ball is clear of an oriented box when its centre is further than its radius from the box.
-bool ball_clear_of_box(const Eigen::Matrix3d& box_rotation_t, const Eigen::Vector3d& box_center,
-                       const Eigen::Vector3d& half_extents, const Eigen::Vector3d& c,
-                       double radius) {
+// Forced inline here and below: the per-block tests run in is_valid's innermost loop (out of
+// line, they cost a fifth more instructions per state on the Panda).
+[[gnu::always_inline]] inline bool ball_clear_of_box(const Eigen::Matrix3d& box_rotation_t,
+                                                     const Eigen::Vector3d& box_center,
+                                                     const Eigen::Vector3d& half_extents,
+                                                     const Eigen::Vector3d& c, double radius) {
   const Eigen::Vector3d local = box_rotation_t * (c - box_center);
   return (local.cwiseAbs() - half_extents).cwiseMax(0.0).squaredNorm() > radius * radius;
 }
 
 }  // namespace
 
-bool CollisionChecker::environment_block_overlaps(const EnvironmentBlock& block, Scratch& s) const {
+[[gnu::always_inline]] inline bool CollisionChecker::environment_block_overlaps(
+    const EnvironmentBlock& block, Scratch& s) const {
   // Balls against the obstacle's oriented box: the shape group's ball first, then its shapes'.
   const ObstacleBox& box = boxes_[static_cast<std::size_t>(block.obstacle)];
   const auto clear = [&box](const Eigen::Vector3d& c, double radius) {
@@ -98,7 +61,8 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, const Shape& other,
   return any;
 }
 
-bool CollisionChecker::self_block_overlaps(const SelfBlock& block, Scratch& s) const {
+[[gnu::always_inline]] inline bool CollisionChecker::self_block_overlaps(const SelfBlock& block,
+                                                                         Scratch& s) const {
   // Non-zero when the pieces meeting the other link's hull are marked with it (below).
   std::uint64_t mark = 0;
   if (block.end - block.begin > 1) {
@@ -141,6 +105,47 @@ bool CollisionChecker::self_block_overlaps(const SelfBlock& block, Scratch& s) c
     }
   }
   return false;
+}
+
+bool CollisionChecker::is_valid(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  model_->check_configuration(q);
+  Scratch& s = scratch();
+  model_->compute_link_poses_unchecked(q.data(), s.link_poses.data());
+  return is_valid_at(s.link_poses);
+}
+
+bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_poses) const {
+  Scratch& s = scratch();
+  place(link_poses, s);
+  for (const EnvironmentBlock& block : blocks_) {
+    if (environment_block_overlaps(block, s)) return false;
+  }
+  for (const SelfBlock& block : self_blocks_) {
+    if (self_block_overlaps(block, s)) return false;
+  }
+  return true;
+}
+
+void CollisionChecker::colliding_link_pairs_at(const std::vector<Eigen::Isometry3d>& link_poses,
+                                               std::vector<std::pair<int, int>>& out) const {
+  Scratch& s = scratch();
+  place(link_poses, s);
+  for (const SelfBlock& block : self_blocks_) {
+    if (self_block_overlaps(block, s)) {
+      out.emplace_back(link_balls_[static_cast<std::size_t>(block.link_a)].link,
+                       link_balls_[static_cast<std::size_t>(block.link_b)].link);
+    }
+  }
+}
+
+std::vector<std::pair<int, int>> CollisionChecker::checked_link_pairs() const {
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(self_blocks_.size());
+  for (const SelfBlock& block : self_blocks_) {
+    pairs.emplace_back(link_balls_[static_cast<std::size_t>(block.link_a)].link,
+                       link_balls_[static_cast<std::size_t>(block.link_b)].link);
+  }
+  return pairs;
 }
 
 }  // namespace hullcheck
