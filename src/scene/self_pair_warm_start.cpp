@@ -1,5 +1,4 @@
 // CollisionChecker's warm-start grids for self pairs moved by at most two configuration values.
-#include <algorithm>
 #include <cmath>
 #include <hullcheck/core/queries.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
