@@ -95,6 +95,38 @@ TEST(SignedDistanceBelow, AgreesWithSignedDistanceOrProvesTheCutoff) {
   EXPECT_GT(exact, 3000);
 }
 
+// A caller's warm start is only a starting point: garbage in it (indices out of range,
+// negative or too many, a non-finite direction) must give the cold answer, never a read out of
+// bounds or a different distance. Analytic answer: unit cube at the origin, cube at x = 3,
+// distance 2.
+TEST(SignedDistanceBelow, GarbageWarmStartGivesTheColdAnswer) {
+  const Shape cube(Box(1, 1, 1));
+  std::vector<Eigen::Vector3d> corners;
+  for (int i = 0; i < 8; ++i)
+    corners.emplace_back(i & 1 ? 0.5 : -0.5, i & 2 ? 0.5 : -0.5, i & 4 ? 0.5 : -0.5);
+  const Shape hull{ConvexHull(corners)};
+  Eigen::Isometry3d far = Eigen::Isometry3d::Identity();
+  far.translation().x() = 3.0;
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int garbage = 0; garbage < 4; ++garbage) {
+    WarmStart warm;
+    warm.valid = true;
+    warm.simplex_size = garbage == 2 ? 9 : 3;
+    for (int i = 0; i < 4; ++i) {
+      warm.index_a[i] = garbage == 0 ? 1000 + i : -7;
+      warm.index_b[i] = garbage == 1 ? 1 << 30 : i;
+    }
+    warm.direction = garbage == 3 ? Eigen::Vector3d(NAN, 0, 0) : Eigen::Vector3d(0, 1, 0);
+    const SignedDistanceResult r =
+        signed_distance_below(hull, Eigen::Isometry3d::Identity(), hull, far, inf, warm);
+    EXPECT_EQ(r.status, Status::kConverged) << garbage;
+    EXPECT_NEAR(r.signed_distance, 2.0, 1e-9) << garbage;
+    const SignedDistanceResult boxes =
+        signed_distance_below(cube, Eigen::Isometry3d::Identity(), cube, far, inf, warm);
+    EXPECT_NEAR(boxes.signed_distance, 2.0, 1e-9) << garbage;
+  }
+}
+
 TEST(SignedDistanceBelow, NanCutoffIsAnError) {
   const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
   EXPECT_THROW(signed_distance_below(Sphere(1.0), identity, Sphere(1.0), identity, NAN),
