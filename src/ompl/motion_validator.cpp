@@ -9,30 +9,29 @@ namespace ob = ::ompl::base;
 
 GuaranteedMotionValidator::GuaranteedMotionValidator(
     const ob::SpaceInformationPtr& si, std::shared_ptr<const StateValidityChecker> validity,
-    double min_clearance, int max_steps)
-    : ob::MotionValidator(si),
-      validity_(std::move(validity)),
-      min_clearance_(min_clearance),
-      max_steps_(max_steps) {
+    const MotionCheckOptions& options)
+    : ob::MotionValidator(si), validity_(std::move(validity)), options_(options) {
   if (!validity_) throw InputError("GuaranteedMotionValidator: validity checker is null");
-  if (!(min_clearance >= 0.0) || !std::isfinite(min_clearance) || max_steps < 1) {
+  if (!(options.min_clearance >= 0.0) || !std::isfinite(options.min_clearance) ||
+      !(options.resolution > 0.0) || !std::isfinite(options.resolution) || options.max_states < 1) {
     throw InputError(
-        "GuaranteedMotionValidator: min_clearance must be finite and >= 0, "
-        "max_steps >= 1");
+        "GuaranteedMotionValidator: min_clearance must be finite and >= 0, resolution finite "
+        "and > 0, max_states >= 1");
   }
 }
 
 bool GuaranteedMotionValidator::advance(const ob::State* s1, const ob::State* s2,
                                         double* last_free) const {
+  // Without a place to report the last valid state, the first contact found settles it.
+  MotionCheckOptions options = options_;
+  options.locate_contact = last_free != nullptr;
   const JointStateSpace& joints = validity_->joint_space();
   const CollisionChecker& checker = validity_->collision_checker();
   // Per-thread scratch: sized once, reused (no allocation per motion).
-  thread_local Eigen::VectorXd q0, q1, dq, at;
+  thread_local Eigen::VectorXd q0, q1;
   const auto n = joints.fixed_configuration().size();
   q0.resize(n);
   q1.resize(n);
-  dq.resize(n);
-  at.resize(n);
   joints.to_configuration(s1, q0);
   joints.to_configuration(s2, q1);
   // Continuous joints: the end value reached the short way round, as SO2 interpolation does.
@@ -41,27 +40,14 @@ bool GuaranteedMotionValidator::advance(const ob::State* s1, const ob::State* s2
       q1[v] = q0[v] + std::remainder(q1[v] - q0[v], 2.0 * M_PI);
     }
   }
-  dq = q1 - q0;  // the motion per unit of t
-  double t = 0.0;
-  *last_free = 0.0;
-  for (int step = 0; step < max_steps_; ++step) {
-    at = q0 + t * dq;
-    const double advance = checker.safe_advance(at, dq, min_clearance_);
-    steps_.fetch_add(1, std::memory_order_relaxed);
-    if (advance < 0.0) return false;  // this state is (nearly) in contact
-    *last_free = t;
-    if (t + advance >= 1.0) {
-      *last_free = 1.0;
-      return true;
-    }
-    t += advance;
-  }
-  return false;
+  const MotionCheckResult r = checker.check_motion(q0, q1, options);
+  steps_.fetch_add(static_cast<unsigned long>(r.states), std::memory_order_relaxed);
+  if (last_free != nullptr) *last_free = r.last_free;
+  return r.free();
 }
 
 bool GuaranteedMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
-  double last_free = 0.0;
-  const bool ok = advance(s1, s2, &last_free);
+  const bool ok = advance(s1, s2, nullptr);
   (ok ? valid_motions_ : invalid_motions_).fetch_add(1, std::memory_order_relaxed);
   return ok;
 }

@@ -42,6 +42,15 @@ void local_box(const Shape& shape, Eigen::Vector3d* center, Eigen::Vector3d* hal
   half->array() += shape.margin();
 }
 
+// A point of the shape, local frame: the origin of a primitive, the mean of a hull's vertices.
+Eigen::Vector3d point_inside(const Shape& shape) {
+  if (shape.kind() != ShapeKind::kConvexHull) return Eigen::Vector3d::Zero();
+  const std::vector<Eigen::Vector3d>& v = std::get<ConvexHull>(shape.geometry()).vertices();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : v) sum += p;
+  return v.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(v.size()));
+}
+
 }  // namespace
 
 CollisionChecker::Scratch& CollisionChecker::scratch() const {
@@ -149,7 +158,8 @@ void CollisionChecker::index_shapes() {
     for (int s = 0; s < static_cast<int>(link.shapes.size()); ++s) {
       const CollisionShape& cs = link.shapes[static_cast<std::size_t>(s)];
       shapes_.push_back({l, s, cs.origin * cs.bounding_center, cs.bounding_radius, link.name,
-                         cs.origin.matrix() == Eigen::Matrix4d::Identity()});
+                         cs.origin.matrix() == Eigen::Matrix4d::Identity(),
+                         cs.origin * point_inside(cs.shape)});
     }
   }
   first_shape[static_cast<std::size_t>(n)] = static_cast<int>(shapes_.size());
@@ -263,6 +273,7 @@ void CollisionChecker::build_environment_pairs(
     Eigen::Vector3d center, half;
     local_box(o.shape, &center, &half);
     boxes_.push_back({o.pose.linear().transpose(), o.pose * center, half});
+    obstacle_points_.push_back(o.pose * point_inside(o.shape));
   }
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     for (int o = 0; o < static_cast<int>(scene_.obstacles.size()); ++o) {

@@ -38,6 +38,20 @@ struct CollisionChecker::Scratch {
   std::vector<std::pair<double, int>> candidates;  // clearance: queue of (lower bound, code)
   std::vector<std::pair<double, int>> nearest;     // clearance: (ball bound, code)
   std::vector<std::pair<double, int>> expanded;    // clearance: a block's pairs
+  // check_motion: the items (blocks or pairs, with their rates) still undecided per interval,
+  // one segment per split interval, and the stack of intervals to examine.
+  struct MotionItem {
+    int kind;     // MotionSearch::Kind
+    int index;    // into blocks_, self_blocks_, environment_pairs_ or self_pairs_
+    double rate;  // m of relative motion per unit of the motion's parameter t
+  };
+  struct MotionInterval {
+    double begin, end;           // of the motion's parameter t
+    int items_begin, items_end;  // into motion_items
+  };
+  std::vector<MotionItem> motion_items, motion_items_next;
+  std::vector<MotionInterval> motion_intervals, motion_intervals_next;
+  Eigen::VectorXd motion_q;  // the configuration being evaluated
 };
 
 // Lever arms (m per unit of a configuration value; 1 for prismatic values, which move points by
@@ -49,6 +63,10 @@ struct CollisionChecker::MotionLevers {
   // safe_advance: per robot shape / per self pair, the motion per unit of each value.
   Eigen::MatrixXd shape_levers;      // shapes x values
   Eigen::MatrixXd self_pair_levers;  // self pairs x values
+  // check_motion: per shape group / self block, the largest of its members' levers per value
+  // (their dot product with |dq| bounds every member's).
+  Eigen::MatrixXd group_levers;       // groups x values
+  Eigen::MatrixXd self_block_levers;  // self blocks x values
 };
 
 }  // namespace hullcheck

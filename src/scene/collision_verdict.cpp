@@ -107,6 +107,14 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, const Shape& other,
   return false;
 }
 
+bool CollisionChecker::environment_block_collides(int block, Scratch& s) const {
+  return environment_block_overlaps(blocks_[static_cast<std::size_t>(block)], s);
+}
+
+bool CollisionChecker::self_block_collides(int block, Scratch& s) const {
+  return self_block_overlaps(self_blocks_[static_cast<std::size_t>(block)], s);
+}
+
 bool CollisionChecker::is_valid(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   model_->check_configuration(q);
   Scratch& s = scratch();

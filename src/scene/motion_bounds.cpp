@@ -114,6 +114,22 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
       out.self_pair_levers(static_cast<Eigen::Index>(p), v) += m * arm(ji, above_a ? a : b);
     }
   }
+  out.group_levers = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(groups_.size()), variables);
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    for (int sh = groups_[g].begin; sh < groups_[g].end; ++sh) {
+      out.group_levers.row(static_cast<Eigen::Index>(g)) =
+          out.group_levers.row(static_cast<Eigen::Index>(g)).cwiseMax(out.shape_levers.row(sh));
+    }
+  }
+  out.self_block_levers =
+      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(self_blocks_.size()), variables);
+  for (std::size_t k = 0; k < self_blocks_.size(); ++k) {
+    for (int p = self_blocks_[k].begin; p < self_blocks_[k].end; ++p) {
+      out.self_block_levers.row(static_cast<Eigen::Index>(k)) =
+          out.self_block_levers.row(static_cast<Eigen::Index>(k))
+              .cwiseMax(out.self_pair_levers.row(p));
+    }
+  }
 }
 
 double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q,

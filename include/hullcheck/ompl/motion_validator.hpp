@@ -11,23 +11,25 @@
 namespace hullcheck {
 
 /// Checks the motion between two states of a JointStateSpace as OMPL interpolates it (real
-/// joints linearly, continuous joints the short way round) by conservative advancement: at each
-/// checked state CollisionChecker::safe_advance finds, pair by pair, how far the motion can go
-/// before the pair's shapes could touch (exact distance over a bound on their relative motion
-/// from the kinematic chain and the shapes' radii), and the motion advances by the smallest
-/// such step until it reaches the end. So an accepted motion is collision-free at every point,
-/// not only at sampled ones — thin obstacles included.
+/// joints linearly, continuous joints the short way round) with CollisionChecker::check_motion:
+/// interval bisection in which a pair is decided over a whole interval when its signed
+/// distance at the interval's middle exceeds how far its shapes can move relative to each other
+/// within it (lever arms of the kinematic chain). So an accepted motion is collision-free at
+/// every point, not only at sampled ones — thin obstacles included.
 ///
-/// A motion is rejected when a checked state has clearance <= `min_clearance` (m, default
-/// 1e-6: states closer than that count as touching), or after `max_steps` (default 100000)
-/// states (reported as a failure at the last state checked, never as success). Thread-safe;
-/// OMPL's own valid/invalid counters (plain integers, racy under parallel planners) are left at
-/// zero, the counts are in valid_motion_count() / invalid_motion_count() (atomic).
+/// A motion is rejected when some configuration of it has a pair within
+/// `options.min_clearance` (m, default 1e-6) of touching; it may be rejected when it passes
+/// within min_clearance + `options.resolution` (default 1e-4 m), and is after
+/// `options.max_states` configurations without a decision (never reported as success). On
+/// rejection the last valid fraction is the end of the proven-free part, before the contact
+/// found, with no pair moving more than `resolution` between the two. Thread-safe; OMPL's own
+/// valid/invalid counters (plain integers, racy under parallel planners) are left at zero, the
+/// counts are in valid_motion_count() / invalid_motion_count() (atomic).
 class GuaranteedMotionValidator : public ::ompl::base::MotionValidator {
  public:
   GuaranteedMotionValidator(const ::ompl::base::SpaceInformationPtr& si,
                             std::shared_ptr<const StateValidityChecker> validity,
-                            double min_clearance = 1e-6, int max_steps = 100000);
+                            const MotionCheckOptions& options = {});
 
   bool checkMotion(const ::ompl::base::State* s1, const ::ompl::base::State* s2) const override;
   /// On failure, `last_valid.first` (when not null) receives the last state known free and
@@ -37,18 +39,19 @@ class GuaranteedMotionValidator : public ::ompl::base::MotionValidator {
 
   unsigned long valid_motion_count() const { return valid_motions_.load(); }
   unsigned long invalid_motion_count() const { return invalid_motions_.load(); }
-  /// Conservative-advancement steps taken so far (one safe_advance call each).
+  /// Configurations evaluated so far by check_motion (one forward kinematics each).
   unsigned long step_count() const { return steps_.load(); }
+  const MotionCheckOptions& options() const { return options_; }
 
  private:
-  /// Advances from s1 towards s2: true when the whole motion is certified free; `last_free`
-  /// receives the fraction of the motion in [0, 1] certified free from s1 (1 when free).
+  /// Checks s1 -> s2: true when the whole motion is certified free; `last_free` (when not null:
+  /// the first contact is then located, see MotionCheckOptions::locate_contact) receives the
+  /// fraction of the motion in [0, 1] certified free from s1 (1 when free).
   bool advance(const ::ompl::base::State* s1, const ::ompl::base::State* s2,
                double* last_free) const;
 
   std::shared_ptr<const StateValidityChecker> validity_;
-  double min_clearance_;
-  int max_steps_;
+  MotionCheckOptions options_;
   mutable std::atomic<unsigned long> valid_motions_{0};
   mutable std::atomic<unsigned long> invalid_motions_{0};
   mutable std::atomic<unsigned long> steps_{0};

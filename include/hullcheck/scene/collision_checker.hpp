@@ -7,6 +7,7 @@
 #include <hullcheck/core/warm_start.hpp>
 #include <hullcheck/robot/allowed_collision_matrix.hpp>
 #include <hullcheck/robot/robot_model.hpp>
+#include <hullcheck/scene/motion_check.hpp>
 #include <hullcheck/scene/planning_scene.hpp>
 #include <limits>
 #include <memory>
@@ -109,6 +110,22 @@ class CollisionChecker {
   double safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q,
                       const Eigen::Ref<const Eigen::VectorXd>& dq, double min_clearance) const;
 
+  /// Proves the straight joint-space motion q0 -> q1 (each value interpolated linearly; pass
+  /// q1 with continuous joints' values already unwrapped for the short way round) free at
+  /// every configuration, or finds its first contact. Interval bisection: over an interval of
+  /// the motion with centre m and half-width h, a pair whose shapes move at most `rate` relative
+  /// to each other per unit of t (the lever arms of safe_advance) and whose signed distance at
+  /// q(m) exceeds h * rate + min_clearance keeps its clearance over the whole interval; pairs
+  /// (and first their groups' balls, links' balls and mesh hulls, with the largest rate of
+  /// their members) that cannot be decided so are passed to the interval's halves, left half
+  /// first, so that the certified part [0, last_free] grows from q0. Tests are ball gaps and
+  /// signed_distance_below with the margin as cutoff (exact distances only where a pair is
+  /// within its margin). Thread-safe; per-thread scratch grows on first use only. Throws
+  /// InputError on a bad configuration or options.
+  MotionCheckResult check_motion(const Eigen::Ref<const Eigen::VectorXd>& q0,
+                                 const Eigen::Ref<const Eigen::VectorXd>& q1,
+                                 const MotionCheckOptions& options = {}) const;
+
  private:
   struct RobotShape {
     int link;
@@ -116,7 +133,8 @@ class CollisionChecker {
     Eigen::Vector3d center;  // bounding ball centre in the link frame
     double radius;
     std::string_view link_name;
-    bool at_link_frame;  // the shape's origin is the identity: its pose is the link's pose
+    bool at_link_frame;      // the shape's origin is the identity: its pose is the link's pose
+    Eigen::Vector3d inside;  // a point of the shape, link frame (distance upper bounds)
   };
   struct ShapeGroup {  // consecutive robot shapes, shapes_[begin, end), culled together
     int begin, end;
@@ -212,6 +230,9 @@ class CollisionChecker {
   // overlap at the placed shapes?
   bool environment_block_overlaps(const EnvironmentBlock& block, Scratch& s) const;
   bool self_block_overlaps(const SelfBlock& block, Scratch& s) const;
+  // The same, out of line, for check_motion (motion_certificate.cpp).
+  bool environment_block_collides(int block, Scratch& s) const;
+  bool self_block_collides(int block, Scratch& s) const;
   // Marks (s.meets_other = mark) the shapes of link ball `link_ball` meeting `other` at its
   // pose; true when any does.
   bool mark_pieces_meeting(int link_ball, const Shape& other, const Eigen::Isometry3d& other_pose,
@@ -223,6 +244,7 @@ class CollisionChecker {
   /// clearance() at the shapes placed by place() (clearance_search.cpp).
   ClearanceResult nearest_pair(Scratch& s) const;
   struct NearestSearch;
+  struct MotionSearch;  // check_motion's bisection (motion_certificate.cpp)
   /// signed_distance_below(cutoff) of checked pair i (environment pairs first, then self pairs)
   /// at the shape poses of the current query.
   SignedDistanceResult pair_distance_below(std::size_t i, double cutoff, Scratch& s) const;
@@ -238,7 +260,8 @@ class CollisionChecker {
   PlanningScene scene_;
   std::vector<RobotShape> shapes_;
   std::vector<ObstacleBox> boxes_;
-  std::vector<SelfPair> self_pairs_;  // grouped by link pair
+  std::vector<Eigen::Vector3d> obstacle_points_;  // a point of each obstacle, world
+  std::vector<SelfPair> self_pairs_;              // grouped by link pair
   std::vector<SelfBlock> self_blocks_;
   std::vector<LinkBall> link_balls_;  // links with geometry
   std::vector<int> shape_begin_;      // per link (and one past): its first index in shapes_

@@ -1,0 +1,432 @@
+// CollisionChecker::check_motion: a proof that a straight joint-space motion is collision-free
+// at every configuration, by interval bisection with inflated tests, or its first contact.
+//
+// The bound. Along q(t) = q0 + t dq, t in [0, 1], a point of robot shape s moves at most
+//   rate_s = sum_v |dq_v| lever_{s,v} (+ the prismatic excess)
+// per unit of t (motion_bounds.cpp), and the shapes of a self pair move at most the pair's rate
+// relative to each other (joints above both links move them together). For an interval with
+// centre m and half-width h, every configuration in it places each shape within h rate of where
+// it is at q(m), so a signed distance d(m) > h rate + min_clearance (the margin) proves the
+// pair keeps clearance > min_clearance over the whole interval. A bounding volume at q(m) (a
+// group's or link's ball, a decomposed mesh's hull) contains its members there, so the same
+// test on it, with the largest of its members' rates, proves all of them at once.
+//
+// The search. Intervals are examined depth first, left half first, each with the items (blocks
+// of pairs or single pairs) that no enclosing interval decided: so when an interval is taken
+// from the stack, [0, its start] is proven free. An item is decided when its test passes
+// (certified) or when its signed distance at q(m) is at most min_clearance (a contact: then
+// only the left half is searched for an earlier one, everything right of m dropped). Items
+// within their margin are passed on to both halves. An interval stops the search when an item
+// still undecided in it moves less than `resolution` within it (the pair is then within
+// min_clearance + resolution of contact at q(m)). Depth is bounded by log2(rate / resolution);
+// the work by max_states.
+//
+// Contents (in order):
+//   check_motion           validates input, runs the search
+//   MotionSearch::run      the interval stack
+//   MotionSearch::examine  one interval: forward kinematics and every item's test
+//   MotionSearch::test_*   one test per item kind (blocks expand into their pairs)
+#include <algorithm>
+#include <cmath>
+#include <hullcheck/core/errors.hpp>
+#include <hullcheck/core/queries.hpp>
+#include <hullcheck/scene/collision_checker.hpp>
+#include <limits>
+#include <string>
+
+#include "collision_checker_internals.hpp"
+
+namespace hullcheck {
+
+struct CollisionChecker::MotionSearch {
+  enum Kind { kEnvironmentBlock, kSelfBlock, kEnvironmentPair, kSelfPair };
+  enum class Outcome { kCertified, kPending, kContact };
+  using Item = Scratch::MotionItem;
+  using Interval = Scratch::MotionInterval;
+
+  const CollisionChecker& c;
+  Scratch& s;
+  const MotionCheckOptions& options;
+  const MotionLevers& levers;
+  const Eigen::Ref<const Eigen::VectorXd>& q0;
+  const Eigen::VectorXd& abs_dq;
+  const Eigen::VectorXd& dq;
+  double extra;  // prismatic excess per unit t: added to every rate (twice for self pairs)
+  MotionCheckResult result;
+
+  // The interval being examined.
+  double half = 0.0;
+  double contact_rate = 0.0;  // rate of the item found in contact
+  bool at_floor = false;      // an undecided item moves less than `resolution` in it
+
+  double margin(double rate) const { return half * rate + options.min_clearance; }
+
+  MotionCheckResult run();
+  MotionCheckResult run_depth_first();  // locate_contact
+  MotionCheckResult run_level_order();  // !locate_contact
+  MotionCheckResult stop(MotionVerdict verdict, double last_free, double contact) {
+    result.verdict = verdict;
+    result.last_free = last_free;
+    result.contact = contact;
+    return result;
+  }
+  /// Tests the items [begin, end) at the interval's centre m, appending the undecided ones
+  /// (then, after a contact, the contact's and all untested ones) to *out.
+  Outcome examine(double m, const std::vector<Item>& in, int begin, int end);
+  Outcome test(const Item& item);
+  Outcome test_environment_block(const Item& item);
+  Outcome test_self_block(const Item& item);
+  /// A block on an interval too coarse to decide it: kept whole, tested for contact only.
+  Outcome probe_block(const Item& item, double gap);
+  /// True when a bounding volume of size `radius` may move by more than its own size within
+  /// the interval (its margin exceeds the radius), above the resolution: its pairs cannot be
+  /// told apart yet.
+  bool coarse(double inflated, double radius, double rate) const {
+    return inflated > radius && half * rate > options.resolution;
+  }
+  Outcome test_pair(std::size_t pair, const Item& item);
+  /// The distance between a point of each of the pair's shapes at q(m): >= the signed distance.
+  double pair_upper_bound(std::size_t pair) const;
+  /// The pairs [begin, end) of a block (pair indices as pair_distance_below's), each tested as
+  /// an item of its own; after a contact the remaining ones are appended untested.
+  Outcome test_block_pairs(int kind, int begin, int end);
+  /// The outcome of an exact query with cutoff margin(rate).
+  Outcome exact_outcome(const SignedDistanceResult& r, double rate);
+  std::vector<Item>* out = nullptr;  // where examine() writes the items left undecided
+
+  // The interval's items left undecided are all proven over [m - window, m + window] (the
+  // smallest of their own windows, from a lower bound on their distance at q(m)).
+  double window = 0.0;
+
+  /// Passes `item` on to the interval's parts; `lower` bounds its signed distance at q(m).
+  void keep(const Item& item, double lower) {
+    out->push_back(item);
+    at_floor = at_floor || half * item.rate <= options.resolution;
+    const double reach = lower - options.min_clearance;  // proven clearance left, m
+    const double w = !(reach > 0.0)    ? 0.0
+                     : item.rate > 0.0 ? reach / item.rate
+                                       : std::numeric_limits<double>::infinity();
+    window = std::min(window, w);
+  }
+};
+
+MotionCheckResult CollisionChecker::check_motion(const Eigen::Ref<const Eigen::VectorXd>& q0,
+                                                 const Eigen::Ref<const Eigen::VectorXd>& q1,
+                                                 const MotionCheckOptions& options) const {
+  model_->check_configuration(q0);
+  model_->check_configuration(q1);
+  if (!(options.min_clearance >= 0.0) || !std::isfinite(options.min_clearance) ||
+      !(options.resolution > 0.0) || !std::isfinite(options.resolution) || options.max_states < 1) {
+    throw InputError(
+        "CollisionChecker::check_motion: min_clearance must be finite and >= 0, resolution "
+        "finite and > 0, max_states >= 1");
+  }
+  require_current_padding();
+  Scratch& s = scratch();
+  if (s.abs_dq.size() != q0.size()) {  // per-thread scratch: allocates on first use only
+    s.abs_dq.resize(q0.size());
+    s.q_end.resize(q0.size());
+  }
+  s.q_end = q1 - q0;  // dq
+  s.abs_dq = s.q_end.cwiseAbs();
+  const double extra = prismatic_excess_motion(q0, q1);
+  MotionSearch search{*this, s, options, motion_levers(), q0, s.abs_dq, s.q_end, extra, {}};
+  return search.run();
+}
+
+MotionCheckResult CollisionChecker::MotionSearch::run() {
+  // The root interval [0, 1] holds every block (none: nothing to check).
+  s.motion_items.clear();
+  s.motion_intervals.clear();
+  for (std::size_t b = 0; b < c.blocks_.size(); ++b) {
+    const auto g = static_cast<Eigen::Index>(c.blocks_[b].group);
+    s.motion_items.push_back(
+        {kEnvironmentBlock, static_cast<int>(b), levers.group_levers.row(g).dot(abs_dq) + extra});
+  }
+  for (std::size_t k = 0; k < c.self_blocks_.size(); ++k) {
+    s.motion_items.push_back(
+        {kSelfBlock, static_cast<int>(k),
+         levers.self_block_levers.row(static_cast<Eigen::Index>(k)).dot(abs_dq) + 2.0 * extra});
+  }
+  if (!s.motion_items.empty()) {
+    s.motion_intervals.push_back({0.0, 1.0, 0, static_cast<int>(s.motion_items.size())});
+  }
+  return options.locate_contact ? run_depth_first() : run_level_order();
+}
+
+MotionCheckResult CollisionChecker::MotionSearch::run_depth_first() {
+  // Depth first, left half first: when an interval is taken, [0, its start] is proven free.
+  double proven_until = 0.0;  // [0, proven_until] is free
+  double contact = -1.0;      // the earliest contact found, if any
+  out = &s.motion_items;
+  while (!s.motion_intervals.empty()) {
+    const Interval interval = s.motion_intervals.back();
+    s.motion_intervals.pop_back();
+    // Segments past this interval's belong to finished intervals.
+    s.motion_items.resize(static_cast<std::size_t>(interval.items_end));
+    if (result.states >= options.max_states)
+      return stop(MotionVerdict::kStateBudget, interval.begin, interval.begin);
+    const double m = 0.5 * (interval.begin + interval.end);
+    half = 0.5 * (interval.end - interval.begin);
+    const auto kept = static_cast<int>(s.motion_items.size());
+    const Outcome outcome = examine(m, s.motion_items, interval.items_begin, interval.items_end);
+    const auto kept_end = static_cast<int>(s.motion_items.size());
+    if (outcome == Outcome::kContact) {
+      contact = m;
+      if (half * contact_rate <= options.resolution) {
+        return stop(MotionVerdict::kContact, interval.begin, m);
+      }
+      s.motion_intervals.clear();  // nothing right of the contact matters
+      s.motion_intervals.push_back({interval.begin, m, kept, kept_end});
+      continue;
+    }
+    if (at_floor) {
+      return stop(contact >= 0.0 ? MotionVerdict::kContact : MotionVerdict::kNearContact,
+                  interval.begin, m);
+    }
+    if (kept_end == kept) {  // every item decided over the whole interval
+      proven_until = interval.end;
+      continue;
+    }
+    // The parts outside [m - window, m + window], the right one first on the stack: the left
+    // one is examined first.
+    const double w = std::min(window, half);
+    if (w >= half) proven_until = interval.end;
+    if (m + w < interval.end) s.motion_intervals.push_back({m + w, interval.end, kept, kept_end});
+    if (m - w > interval.begin) {
+      s.motion_intervals.push_back({interval.begin, m - w, kept, kept_end});
+    }
+  }
+  if (contact >= 0.0) {  // the search left of the contact ended proving everything before it
+    return stop(MotionVerdict::kContact, std::min(proven_until, contact), contact);
+  }
+  return stop(MotionVerdict::kFree, 1.0, 1.0);
+}
+
+MotionCheckResult CollisionChecker::MotionSearch::run_level_order() {
+  // Level by level, each from left to right (the order of OMPL's discrete validator): a
+  // contact anywhere is found at the coarsest level that holds it. The items of the next level
+  // go to a second buffer; the two swap after each level.
+  s.motion_items_next.clear();
+  s.motion_intervals_next.clear();
+  out = &s.motion_items_next;
+  while (!s.motion_intervals.empty()) {
+    for (const Interval& interval : s.motion_intervals) {
+      if (result.states >= options.max_states) return stop(MotionVerdict::kStateBudget, 0.0, 0.0);
+      const double m = 0.5 * (interval.begin + interval.end);
+      half = 0.5 * (interval.end - interval.begin);
+      const auto kept = static_cast<int>(out->size());
+      const Outcome outcome = examine(m, s.motion_items, interval.items_begin, interval.items_end);
+      const auto kept_end = static_cast<int>(out->size());
+      if (outcome == Outcome::kContact) return stop(MotionVerdict::kContact, 0.0, m);
+      if (at_floor) return stop(MotionVerdict::kNearContact, 0.0, m);
+      if (kept_end == kept) continue;
+      const double w = std::min(window, half);  // [m - w, m + w] is proven
+      if (m - w > interval.begin) {
+        s.motion_intervals_next.push_back({interval.begin, m - w, kept, kept_end});
+      }
+      if (m + w < interval.end) {
+        s.motion_intervals_next.push_back({m + w, interval.end, kept, kept_end});
+      }
+    }
+    s.motion_items.swap(s.motion_items_next);
+    s.motion_intervals.swap(s.motion_intervals_next);
+    s.motion_items_next.clear();
+    s.motion_intervals_next.clear();
+  }
+  return stop(MotionVerdict::kFree, 1.0, 1.0);
+}
+
+CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::examine(
+    double m, const std::vector<Item>& in, int begin, int end) {
+  at_floor = false;
+  window = std::numeric_limits<double>::infinity();
+  ++result.states;
+  s.motion_q = q0 + m * dq;
+  c.model_->compute_link_poses_unchecked(s.motion_q.data(), s.link_poses.data());
+  c.place(s.link_poses, s);
+  s.q = s.motion_q.data();  // self pairs' warm-start grids
+  for (int k = begin; k < end; ++k) {
+    const Item item = in[static_cast<std::size_t>(k)];  // a copy: `in` may be *out, growing
+    if (test(item) == Outcome::kContact) {
+      for (int r = k + 1; r < end; ++r) out->push_back(in[static_cast<std::size_t>(r)]);
+      return Outcome::kContact;
+    }
+  }
+  return Outcome::kPending;  // the kept items, if any, are undecided
+}
+
+CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test(const Item& item) {
+  switch (item.kind) {
+    case kEnvironmentBlock:
+      return test_environment_block(item);
+    case kSelfBlock:
+      return test_self_block(item);
+    case kEnvironmentPair:
+      return test_pair(static_cast<std::size_t>(item.index), item);
+    default:
+      return test_pair(c.environment_pairs_.size() + static_cast<std::size_t>(item.index), item);
+  }
+}
+
+CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_environment_block(
+    const Item& item) {
+  const EnvironmentBlock& block = c.blocks_[static_cast<std::size_t>(item.index)];
+  const auto g = static_cast<std::size_t>(block.group);
+  const ObstacleBox& box = c.boxes_[static_cast<std::size_t>(block.obstacle)];
+  const double inflated = margin(item.rate);
+  const double gap = c.box_gap(box, s.group_centers[g], s.group_radii[g]);
+  if (gap > inflated) return Outcome::kCertified;
+  if (coarse(inflated, s.group_radii[g], item.rate)) return probe_block(item, gap);
+  const int bound = c.groups_[g].bound;
+  if (bound >= 0 && block.end - block.begin > 1) {
+    // A decomposed mesh: its hull (containing every piece) first.
+    const Obstacle& o = c.scene_.obstacles[static_cast<std::size_t>(block.obstacle)];
+    ++result.exact_queries;
+    const SignedDistanceResult r = signed_distance_below(
+        c.bounding_shape(bound), c.shape_pose(bound, s), o.shape, o.pose, inflated);
+    if (r.status == Status::kAboveCutoff && r.signed_distance >= inflated) {
+      return Outcome::kCertified;
+    }
+  }
+  return test_block_pairs(kEnvironmentPair, block.begin, block.end);
+}
+
+CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_self_block(
+    const Item& item) {
+  const SelfBlock& block = c.self_blocks_[static_cast<std::size_t>(item.index)];
+  const LinkBall& ball_a = c.link_balls_[static_cast<std::size_t>(block.link_a)];
+  const LinkBall& ball_b = c.link_balls_[static_cast<std::size_t>(block.link_b)];
+  const double inflated = margin(item.rate);
+  const double gap = (s.link_centers[static_cast<std::size_t>(block.link_a)] -
+                      s.link_centers[static_cast<std::size_t>(block.link_b)])
+                         .norm() -
+                     ball_a.radius - ball_b.radius;
+  if (gap > inflated) return Outcome::kCertified;
+  if (coarse(inflated, std::max(ball_a.radius, ball_b.radius), item.rate)) {
+    return probe_block(item, gap);
+  }
+  if (ball_a.bound >= 0 && ball_b.bound >= 0 && block.end - block.begin > 1) {
+    // Links that are one shape or one decomposed mesh: their hulls first.
+    ++result.exact_queries;
+    const SignedDistanceResult r = signed_distance_below(
+        c.bounding_shape(ball_a.bound), c.shape_pose(ball_a.bound, s),
+        c.bounding_shape(ball_b.bound), c.shape_pose(ball_b.bound, s), inflated);
+    if (r.status == Status::kAboveCutoff && r.signed_distance >= inflated) {
+      return Outcome::kCertified;
+    }
+  }
+  return test_block_pairs(kSelfPair, block.begin, block.end);
+}
+
+CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::probe_block(
+    const Item& item, double gap) {
+  // Too coarse an interval to prove much of this block: only whether it collides at q(m)
+  // (is_valid's tests), which drops everything right of m when it does.
+  const bool collides = item.kind == kEnvironmentBlock ? c.environment_block_collides(item.index, s)
+                                                       : c.self_block_collides(item.index, s);
+  if (collides) {
+    out->push_back(item);
+    contact_rate = item.rate;
+    return Outcome::kContact;
+  }
+  keep(item, gap);
+  return Outcome::kPending;
+}
+
+CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_block_pairs(int kind,
+                                                                                         int begin,
+                                                                                         int end) {
+  const auto rate_of = [&](int i) {
+    if (kind == kEnvironmentPair) {
+      const int shape = c.environment_pairs_[static_cast<std::size_t>(i)].shape;
+      return levers.shape_levers.row(shape).dot(abs_dq) + extra;
+    }
+    return levers.self_pair_levers.row(i).dot(abs_dq) + 2.0 * extra;
+  };
+  const std::size_t offset = kind == kEnvironmentPair ? 0 : c.environment_pairs_.size();
+  for (int i = begin; i < end; ++i) {
+    const Item item{kind, i, rate_of(i)};
+    const Outcome outcome = test_pair(offset + static_cast<std::size_t>(i), item);
+    if (outcome == Outcome::kContact) {
+      for (int r = i + 1; r < end; ++r) out->push_back({kind, r, rate_of(r)});
+      return outcome;
+    }
+  }
+  // The block itself is decided: its undecided pairs were kept as items of their own.
+  return Outcome::kCertified;
+}
+
+CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pair(
+    std::size_t pair, const Item& item) {
+  const double inflated = margin(item.rate);
+  double gap;  // a lower bound on the signed distance, from the shapes' balls
+  const std::size_t n_env = c.environment_pairs_.size();
+  if (pair < n_env) {
+    const EnvironmentPair& p = c.environment_pairs_[pair];
+    gap = c.box_gap(c.boxes_[static_cast<std::size_t>(p.obstacle)], c.center(p.shape, s),
+                    c.shapes_[static_cast<std::size_t>(p.shape)].radius);
+  } else {
+    const SelfPair& p = c.self_pairs_[pair - n_env];
+    gap = (c.center(p.a, s) - c.center(p.b, s)).norm() -
+          c.shapes_[static_cast<std::size_t>(p.a)].radius -
+          c.shapes_[static_cast<std::size_t>(p.b)].radius;
+  }
+  if (gap > inflated) return Outcome::kCertified;
+  // Where even an upper bound on the distance (from a point of one shape to a point of the
+  // other) is within the margin, no test can certify the pair over this interval, above the
+  // resolution: only a contact at q(m) is looked for (a query as cheap as a boolean one on
+  // shapes apart), and not even that when the balls are apart.
+  const bool hopeless = pair_upper_bound(pair) <= inflated && half * item.rate > options.resolution;
+  if (hopeless && gap > options.min_clearance) {
+    keep(item, gap);
+    return Outcome::kPending;
+  }
+  ++result.exact_queries;
+  const SignedDistanceResult r =
+      c.pair_distance_below(pair, hopeless ? options.min_clearance : inflated, s);
+  const Outcome outcome =
+      hopeless
+          ? (r.signed_distance <= options.min_clearance ? Outcome::kContact : Outcome::kPending)
+          : exact_outcome(r, item.rate);
+  if (outcome == Outcome::kPending) {
+    // A converged distance or a proven bound (kAboveCutoff); otherwise only the balls' gap.
+    const bool proven = r.status == Status::kConverged || r.status == Status::kAboveCutoff;
+    keep(item, proven ? std::max(gap, r.signed_distance) : gap);
+  } else if (outcome == Outcome::kContact) {
+    contact_rate = item.rate;
+    out->push_back(item);  // searched for earlier in the left half
+  }
+  return outcome;
+}
+
+double CollisionChecker::MotionSearch::pair_upper_bound(std::size_t pair) const {
+  const std::vector<Eigen::Isometry3d>& poses = *s.link_poses_in;
+  const auto point = [&](int shape) {
+    const RobotShape& rs = c.shapes_[static_cast<std::size_t>(shape)];
+    return Eigen::Vector3d(poses[static_cast<std::size_t>(rs.link)] * rs.inside);
+  };
+  const std::size_t n_env = c.environment_pairs_.size();
+  if (pair < n_env) {
+    const EnvironmentPair& p = c.environment_pairs_[pair];
+    return (point(p.shape) - c.obstacle_points_[static_cast<std::size_t>(p.obstacle)]).norm();
+  }
+  const SelfPair& p = c.self_pairs_[pair - n_env];
+  return (point(p.a) - point(p.b)).norm();
+}
+
+CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::exact_outcome(
+    const SignedDistanceResult& r, double rate) {
+  // A proven lower bound at or above the margin certifies; so does a converged distance (exact
+  // to 1e-10 x the shapes' size, far below min_clearance's default). An answer that did not
+  // converge certifies nothing: the pair is split further (or reported near contact).
+  const double inflated = margin(rate);
+  if (r.status == Status::kAboveCutoff ||
+      (r.status == Status::kConverged && r.signed_distance > inflated)) {
+    return r.signed_distance >= inflated ? Outcome::kCertified : Outcome::kPending;
+  }
+  if (r.signed_distance <= options.min_clearance) return Outcome::kContact;
+  return Outcome::kPending;
+}
+
+}  // namespace hullcheck
