@@ -78,6 +78,9 @@ struct CollisionChecker::MotionSearch {
   Outcome test_self_block(const Item& item);
   /// A block on an interval too coarse to decide it: kept whole, tested for contact only.
   Outcome probe_block(const Item& item, double gap);
+  /// What a block's bounding-hull query `r` (cutoff: the block's margin) decides: kCertified,
+  /// kPending (kept whole), or kContact meaning "undecided: test the pieces".
+  Outcome hull_outcome(const Item& item, const SignedDistanceResult& r);
   /// True when a bounding volume of size `radius` may move by more than its own size within
   /// the interval (its margin exceeds the radius), above the resolution: its pairs cannot be
   /// told apart yet.
@@ -285,9 +288,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_env
     ++result.exact_queries;
     const SignedDistanceResult r = signed_distance_below(
         c.bounding_shape(bound), c.shape_pose(bound, s), o.shape, o.pose, inflated);
-    if (r.status == Status::kAboveCutoff && r.signed_distance >= inflated) {
-      return Outcome::kCertified;
-    }
+    if (const Outcome h = hull_outcome(item, r); h != Outcome::kContact) return h;
   }
   return test_block_pairs(kEnvironmentPair, block.begin, block.end);
 }
@@ -312,11 +313,27 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
     const SignedDistanceResult r = signed_distance_below(
         c.bounding_shape(ball_a.bound), c.shape_pose(ball_a.bound, s),
         c.bounding_shape(ball_b.bound), c.shape_pose(ball_b.bound, s), inflated);
-    if (r.status == Status::kAboveCutoff && r.signed_distance >= inflated) {
-      return Outcome::kCertified;
-    }
+    if (const Outcome h = hull_outcome(item, r); h != Outcome::kContact) return h;
   }
   return test_block_pairs(kSelfPair, block.begin, block.end);
+}
+
+CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::hull_outcome(
+    const Item& item, const SignedDistanceResult& r) {
+  const double inflated = margin(item.rate);
+  if (r.status == Status::kAboveCutoff && r.signed_distance >= inflated) {
+    return Outcome::kCertified;
+  }
+  // Hulls apart (converged, above min_clearance): none of their pieces touch at q(m), and the
+  // hull distance proves the whole block over a window, so the block stays one item (one query
+  // per interval instead of one per piece pair). Above the resolution only: there the pieces,
+  // possibly further apart than their hulls, decide.
+  if (r.status == Status::kConverged && r.signed_distance > options.min_clearance &&
+      half * item.rate > options.resolution) {
+    keep(item, r.signed_distance);
+    return Outcome::kPending;
+  }
+  return Outcome::kContact;  // not decided by the hulls: the caller tests the pieces
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::probe_block(
