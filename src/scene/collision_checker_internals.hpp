@@ -52,6 +52,14 @@ struct CollisionChecker::Scratch {
   std::vector<MotionItem> motion_items, motion_items_next;
   std::vector<MotionInterval> motion_intervals, motion_intervals_next;
   Eigen::VectorXd motion_q;  // the configuration being evaluated
+  // Per self block: its hull query's last warm start within the motion numbered `motion`
+  // (motion_stamp grows with every check_motion, so every motion starts cold, as on any thread).
+  struct MotionWarmStart {
+    std::uint64_t motion = 0;
+    WarmStart start;
+  };
+  std::vector<MotionWarmStart> motion_warm;
+  std::uint64_t motion_stamp = 0;
 };
 
 // Lever arms (m per unit of a configuration value; 1 for prismatic values, which move points by

@@ -90,6 +90,11 @@ struct CollisionChecker::MotionSearch {
   Outcome test_pair(std::size_t pair, const Item& item);
   /// The distance between a point of each of the pair's shapes at q(m): >= the signed distance.
   double pair_upper_bound(std::size_t pair) const;
+  /// Self block `slot`'s warm start for its hull query, from its previous query in this motion
+  /// (cold on its first use in this motion). Measured: it saves a tenth on the UR5's motions;
+  /// warm starting pairs the same way cost the Panda's a quarter more (starts from a distant
+  /// interval's answer are worse than the ball centres' or the grid's).
+  WarmStart& warm_start(std::size_t slot);
   /// The pairs [begin, end) of a block (pair indices as pair_distance_below's), each tested as
   /// an item of its own; after a contact the remaining ones are appended untested.
   Outcome test_block_pairs(int kind, int begin, int end);
@@ -130,6 +135,8 @@ MotionCheckResult CollisionChecker::check_motion(const Eigen::Ref<const Eigen::V
     s.abs_dq.resize(q0.size());
     s.q_end.resize(q0.size());
   }
+  ++s.motion_stamp;  // the warm starts of earlier motions are not used
+  if (s.motion_warm.size() < self_blocks_.size()) s.motion_warm.resize(self_blocks_.size());
   s.q_end = q1 - q0;  // dq
   s.abs_dq = s.q_end.cwiseAbs();
   const double extra = prismatic_excess_motion(q0, q1);
@@ -310,9 +317,10 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
   if (ball_a.bound >= 0 && ball_b.bound >= 0 && block.end - block.begin > 1) {
     // Links that are one shape or one decomposed mesh: their hulls first.
     ++result.exact_queries;
-    const SignedDistanceResult r = signed_distance_below(
-        c.bounding_shape(ball_a.bound), c.shape_pose(ball_a.bound, s),
-        c.bounding_shape(ball_b.bound), c.shape_pose(ball_b.bound, s), inflated);
+    const SignedDistanceResult r =
+        signed_distance_below(c.bounding_shape(ball_a.bound), c.shape_pose(ball_a.bound, s),
+                              c.bounding_shape(ball_b.bound), c.shape_pose(ball_b.bound, s),
+                              inflated, warm_start(static_cast<std::size_t>(item.index)));
     if (const Outcome h = hull_outcome(item, r); h != Outcome::kContact) return h;
   }
   return test_block_pairs(kSelfPair, block.begin, block.end);
@@ -415,6 +423,15 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pai
     out->push_back(item);  // searched for earlier in the left half
   }
   return outcome;
+}
+
+WarmStart& CollisionChecker::MotionSearch::warm_start(std::size_t slot) {
+  Scratch::MotionWarmStart& w = s.motion_warm[slot];
+  if (w.motion != s.motion_stamp) {  // from another motion (or checker): start cold
+    w.motion = s.motion_stamp;
+    w.start = WarmStart{};
+  }
+  return w.start;
 }
 
 double CollisionChecker::MotionSearch::pair_upper_bound(std::size_t pair) const {
