@@ -82,6 +82,11 @@ void run(const BenchmarkSettings& s) {
   if (planner_list.empty()) throw InputError("--planners: no planner named");
   const std::vector<ProblemFiles> problems =
       shard(find_problems(s.problems), shard_index, shard_count);
+  if (s.discrete) {
+    std::fprintf(stderr,
+                 "warning: --discrete: motions are checked at sampled states only; solution "
+                 "paths are not certified between them\n");
+  }
   const LoadedWorld base = s.world.load();  // the robot and SRDF; scenes come per problem
   {
     // Fail on a bad planner name now, not in a worker thread.

@@ -48,6 +48,11 @@ void run(const PlanSettings& s) {
   const bool goal_ok = check_endpoint(*world.checker, goal, "goal");
   if (!start_ok || !goal_ok) throw ExitWith{kExitInvalidProblem};
 
+  if (s.discrete) {
+    std::fprintf(stderr,
+                 "warning: --discrete: motions are checked at sampled states only; the path is "
+                 "not certified between them\n");
+  }
   PlanningSetup planning =
       make_planning_setup(world.checker, variables, start,
                           s.discrete ? MotionChecking::kDiscrete : MotionChecking::kGuaranteed);
@@ -68,7 +73,7 @@ void run(const PlanSettings& s) {
               planning.validity->check_count());
   if (const auto guaranteed =
           std::dynamic_pointer_cast<GuaranteedMotionValidator>(si->getMotionValidator())) {
-    std::printf(", %lu motion checks in %lu conservative-advancement steps",
+    std::printf(", %lu certified motion checks evaluating %lu states",
                 guaranteed->valid_motion_count() + guaranteed->invalid_motion_count(),
                 guaranteed->step_count());
   }

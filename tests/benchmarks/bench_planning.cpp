@@ -15,7 +15,7 @@
 // two alternates from problem to problem. Solve time is the wall time of SimpleSetup::solve
 // (setup included; building the checkers is not). Problems whose start or goal is in collision
 // (by hullcheck; FCL's verdict is recorded beside it) are listed, not planned. Every solution
-// path is re-checked with hullcheck's guaranteed motion validator (conservative advancement)
+// path is re-checked with hullcheck's guaranteed motion validator (certified: check_motion)
 // and the result recorded: discrete checking can accept motions that cut into an obstacle.
 // With --guaranteed, a third attempt plans with that validator itself (same seed). With
 // --compare-hull, another plans with one convex hull per mesh instead of the convex pieces.
@@ -447,7 +447,8 @@ void summarize(const std::vector<std::string>& files, const std::string& table_f
       << ratio(g.fcl.median_time, g.hc.median_time) << " |\n";
   }
   if (!guaranteed.empty()) {
-    t << "\nhullcheck with its guaranteed motion validator (conservative advancement; same seeds):"
+    t << "\nhullcheck with its guaranteed motion validator (certified motions, "
+         "CollisionChecker::check_motion; same seeds):"
          "\n\n| robot | valid start/goal | solved | median solve (ms) | paths failing the "
          "guaranteed re-check |\n|---|---|---|---|---|\n";
     for (const auto& [robot, list] : guaranteed) {

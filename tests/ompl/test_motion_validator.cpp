@@ -37,7 +37,7 @@ Obstacle box_obstacle(const std::string& name, const Eigen::Vector3d& sizes,
   return Obstacle{name, name, Shape(Box(sizes)), pose, "box"};
 }
 
-// Statistics of conservative-advancement step counts.
+// Statistics of the states certified motion checks evaluate.
 struct StepStats {
   std::vector<int> accepted, rejected;
   static std::string describe(std::vector<int> v) {

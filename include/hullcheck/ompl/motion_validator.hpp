@@ -1,5 +1,5 @@
 // GuaranteedMotionValidator: OMPL motion validation that cannot miss a collision between
-// checked states (conservative advancement).
+// checked states (CollisionChecker::check_motion's certificate).
 #pragma once
 
 #include <ompl/base/MotionValidator.h>
