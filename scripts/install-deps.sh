@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(cmake g++ make clang-format pkg-config
   libompl-dev libeigen3-dev liburdfdom-dev libassimp-dev libqhull-dev libyaml-cpp-dev
-  libtinyxml2-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libtinyxml2-dev libhwy-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   libfcl-dev libccd-dev libbullet-dev liborocos-kdl-dev libkdl-parser-dev
   ompl-demos libjs-three clang libclang-rt-dev)
 # ompl-demos: ompl_benchmark_statistics, to check the benchmark logs; libjs-three: three.js,

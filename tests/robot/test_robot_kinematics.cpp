@@ -1,8 +1,9 @@
 // Robot kinematics: forward kinematics against KDL (kdl_parser's tree of the same
 // URDF), the configuration order against an independent depth-first walk of the URDF (parsed here
 // with tinyxml2), mimic joints, limits and the default configuration, and the allocation-free
-// forward kinematics.
+// forward kinematics; the SIMD block forward kinematics against KDL on every SIMD target.
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 #include <tinyxml2.h>
 
 #include <Eigen/Geometry>
@@ -177,6 +178,9 @@ struct FkComparison {
   double reach = 0.0;
   double ns_per_call = 0.0;
   int configurations = 0;
+  double max_block_rotation_error = 0.0;  // compute_link_poses_block, every SIMD target
+  double max_block_translation_error = 0.0;
+  std::string block_targets;  // the targets run
 };
 
 // Random configurations (uniform within the URDF's limits, continuous joints in [-pi, pi]),
@@ -251,6 +255,43 @@ FkComparison compare_with_kdl(const std::string& xml, const RobotModel& model, i
   out.configurations = configurations;
   out.reach = urdf.reach();
 
+  // The SIMD block evaluation on every SIMD target Highway compiled that this CPU runs (each
+  // forced in turn: a CPU without AVX2 or AVX-512 takes one of the narrower ones), blocks of
+  // 1 to kPoseBlockLanes configurations, each lane against KDL.
+  LinkPoseBlock block;
+  for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    hwy::SetSupportedTargetsForTest(target);
+    out.block_targets +=
+        std::string(out.block_targets.empty() ? "" : " ") + hwy::TargetName(target);
+    for (int c = 0; c < configurations;) {
+      const int count = std::min(configurations - c, 1 + c % kPoseBlockLanes);
+      model.compute_link_poses_block(qs[static_cast<std::size_t>(c)].data(), model.variable_count(),
+                                     1, block);
+      // The columns of a matrix: consecutive configurations `stride` values apart.
+      Eigen::MatrixXd columns(model.variable_count(), count);
+      for (int k = 0; k < count; ++k) columns.col(k) = qs[static_cast<std::size_t>(c + k)];
+      model.compute_link_poses_block(columns.data(), columns.rows(), count, block);
+      for (int k = 0; k < kPoseBlockLanes; ++k) {
+        const int config = c + std::min(k, count - 1);  // lanes past count repeat the last
+        for (std::size_t l = 0; l < model.links().size(); ++l) {
+          KDL::Frame f;
+          solver.JntToCart(kdl_qs[static_cast<std::size_t>(config)], f, model.links()[l].name);
+          const Eigen::Isometry3d p = block.pose(static_cast<int>(l), k);
+          for (int r = 0; r < 3; ++r) {
+            out.max_block_translation_error =
+                std::max(out.max_block_translation_error, std::abs(f.p(r) - p.translation()[r]));
+            for (int m = 0; m < 3; ++m) {
+              out.max_block_rotation_error =
+                  std::max(out.max_block_rotation_error, std::abs(f.M(r, m) - p.linear()(r, m)));
+            }
+          }
+        }
+      }
+      c += count;
+    }
+  }
+  hwy::SetSupportedTargetsForTest(0);
+
   // Speed of the unchecked evaluation: the best of 5 rounds (the machine may be busy).
   using Clock = std::chrono::steady_clock;
   const int repeats = std::max(1, 5000 / configurations);
@@ -280,11 +321,17 @@ void expect_fk_matches_kdl(const std::string& id, const std::string& xml, const 
   const double translation_tolerance = 1e-12;
   EXPECT_LE(c.max_rotation_error, 1e-12) << "worst link " << c.worst_link;
   EXPECT_LE(c.max_translation_error, translation_tolerance) << "worst link " << c.worst_link;
+  EXPECT_LE(c.max_block_rotation_error, 1e-12) << "SIMD targets " << c.block_targets;
+  EXPECT_LE(c.max_block_translation_error, translation_tolerance)
+      << "SIMD targets " << c.block_targets;
+  EXPECT_FALSE(c.block_targets.empty());
   std::cout << "[          ] " << id << ": " << model.links().size() << " links, "
             << model.variable_count() << " variables, reach " << c.reach << " m; over "
             << c.configurations << " configurations max |dR| " << c.max_rotation_error
             << ", max |dt| " << c.max_translation_error << " m (tolerance " << translation_tolerance
-            << "); FK " << c.ns_per_call << " ns/call\n";
+            << "); FK " << c.ns_per_call << " ns/call; blocks on SIMD targets " << c.block_targets
+            << ": max |dR| " << c.max_block_rotation_error << ", max |dt| "
+            << c.max_block_translation_error << " m\n";
 }
 
 class RobotFk : public testing::TestWithParam<std::string> {};

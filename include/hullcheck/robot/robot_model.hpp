@@ -6,6 +6,7 @@
 #include <cmath>
 #include <hullcheck/core/shape.hpp>
 #include <hullcheck/robot/convex_decomposition.hpp>
+#include <hullcheck/robot/link_pose_block.hpp>
 #include <hullcheck/robot/mesh_file.hpp>
 #include <hullcheck/robot/resource_path.hpp>
 #include <limits>
@@ -215,6 +216,16 @@ class RobotModel {
   /// The same without checks, for hot loops: q points to variable_count() finite values and
   /// link_poses to links().size() poses.
   void compute_link_poses_unchecked(const double* q, Eigen::Isometry3d* link_poses) const;
+  /// Forward kinematics of `count` (1..kPoseBlockLanes) configurations at once, vectorised
+  /// across them (SIMD, the widest the CPU supports, chosen at run time): configuration k's
+  /// values start at q + k * stride (a column-major matrix's columns: stride = rows), each
+  /// variable_count() finite values (unchecked, as above). Lanes from `count` on repeat the last
+  /// configuration. Poses agree with compute_link_poses to rounding (about 1e-15 relative; sin
+  /// and cos are SIMD approximations within a few ulp), not bit for bit: callers needing exact
+  /// answers use them only with a tolerance (CollisionChecker::is_valid_batch's broad phase).
+  /// Thread-safe; allocates only while `out` or this thread's scratch grows.
+  void compute_link_poses_block(const double* q, std::ptrdiff_t stride, int count,
+                                LinkPoseBlock& out) const;
 
   /// Sets the padding of one link / of every link not given its own; re-inflates the shapes.
   /// Not thread-safe with concurrent queries on this model.
