@@ -265,13 +265,11 @@ FkComparison compare_with_kdl(const std::string& xml, const RobotModel& model, i
         std::string(out.block_targets.empty() ? "" : " ") + hwy::TargetName(target);
     for (int c = 0; c < configurations;) {
       const int count = std::min(configurations - c, 1 + c % kPoseBlockLanes);
-      model.compute_link_poses_block(qs[static_cast<std::size_t>(c)].data(), model.variable_count(),
-                                     1, block);
       // The columns of a matrix: consecutive configurations `stride` values apart.
       Eigen::MatrixXd columns(model.variable_count(), count);
       for (int k = 0; k < count; ++k) columns.col(k) = qs[static_cast<std::size_t>(c + k)];
       model.compute_link_poses_block(columns.data(), columns.rows(), count, block);
-      for (int k = 0; k < kPoseBlockLanes; ++k) {
+      for (int k = 0; k < std::min(count + 1, kPoseBlockLanes); ++k) {  // and one repeat
         const int config = c + std::min(k, count - 1);  // lanes past count repeat the last
         for (std::size_t l = 0; l < model.links().size(); ++l) {
           KDL::Frame f;
