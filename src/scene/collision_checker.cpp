@@ -190,7 +190,9 @@ void CollisionChecker::build_self_pairs() {
   // encloses its shapes' balls (about the middle of their centres' bounding box): a link pair
   // whose balls are apart needs none of its shape pairs (decomposed links have many).
   const std::vector<int> solid = model_->links_with_geometry();
+  link_ball_of_link_.assign(model_->links().size(), -1);
   for (int l : solid) {
+    link_ball_of_link_[static_cast<std::size_t>(l)] = static_cast<int>(link_balls_.size());
     LinkBall ball{l, Eigen::Vector3d::Zero(), 0.0};
     enclosing_ball(shape_begin_[static_cast<std::size_t>(l)],
                    shape_begin_[static_cast<std::size_t>(l) + 1], &ball.center, &ball.radius);

@@ -49,6 +49,12 @@ struct CollisionChecker::Scratch {
     double begin, end;           // of the motion's parameter t
     int items_begin, items_end;  // into motion_items
   };
+  // is_valid_batch: the block's link poses, link ball centres per lane (x, y, z rows of
+  // kPoseBlockLanes), and per lane the blocks the balls left undecided (environment blocks as
+  // their index, self blocks as -1 - index).
+  LinkPoseBlock pose_block;
+  std::vector<double> ball_centers;
+  std::vector<int> undecided[kPoseBlockLanes];
   std::vector<MotionItem> motion_items, motion_items_next;
   std::vector<MotionInterval> motion_intervals, motion_intervals_next;
   Eigen::VectorXd motion_q;  // the configuration being evaluated

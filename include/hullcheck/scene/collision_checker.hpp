@@ -75,6 +75,16 @@ class CollisionChecker {
   /// their warm-start grid's cell for q: about half the iterations on random Panda states, the
   /// same answers to the query tolerance, and the same answer for the same q on every thread.
   ClearanceResult clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  /// is_valid for many configurations: the columns of `configurations` (variable_count() rows),
+  /// verdicts written to valid[0 .. cols()). Identical to is_valid column by column (tested on
+  /// every MotionBenchMaker family, near-contact states included). Blocks of kPoseBlockLanes
+  /// columns: forward kinematics vectorised across the block (RobotModel::
+  /// compute_link_poses_block), then link balls against obstacle boxes and against each other
+  /// for the whole block; a column whose balls leave some pair undecided (by more than 1e-9 m
+  /// of rounding slack) gets is_valid's exact tests for those pairs only, at poses from the
+  /// scalar forward kinematics. Throws InputError naming the first bad column. Thread-safe; no
+  /// allocation after a thread's first call.
+  void is_valid_batch(const Eigen::Ref<const Eigen::MatrixXd>& configurations, bool* valid) const;
   /// The same for link poses from RobotModel::compute_link_poses. clearance_at has no
   /// configuration to look the grids up with: its queries start cold (same answers, slower).
   bool is_valid_at(const std::vector<Eigen::Isometry3d>& link_poses) const;
@@ -232,6 +242,10 @@ class CollisionChecker {
   bool self_block_overlaps(const SelfBlock& block, Scratch& s) const;
   // The same, out of line, for check_motion (motion_certificate.cpp).
   bool environment_block_collides(int block, Scratch& s) const;
+  static bool clear_of_box(const ObstacleBox& box, double x, double y, double z, double radius);
+  /// is_valid_batch for one block of up to kPoseBlockLanes columns starting at `first`.
+  void is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& configurations, Eigen::Index first,
+                      int count, bool* valid, Scratch& s) const;
   bool self_block_collides(int block, Scratch& s) const;
   // Marks (s.meets_other = mark) the shapes of link ball `link_ball` meeting `other` at its
   // pose; true when any does.
@@ -263,8 +277,9 @@ class CollisionChecker {
   std::vector<Eigen::Vector3d> obstacle_points_;  // a point of each obstacle, world
   std::vector<SelfPair> self_pairs_;              // grouped by link pair
   std::vector<SelfBlock> self_blocks_;
-  std::vector<LinkBall> link_balls_;  // links with geometry
-  std::vector<int> shape_begin_;      // per link (and one past): its first index in shapes_
+  std::vector<LinkBall> link_balls_;    // links with geometry
+  std::vector<int> link_ball_of_link_;  // per model link: its index in link_balls_, or -1
+  std::vector<int> shape_begin_;        // per link (and one past): its first index in shapes_
   std::vector<EnvironmentPair> environment_pairs_;  // grouped by block
   std::vector<ShapeGroup> groups_;
   std::vector<EnvironmentBlock> blocks_;
