@@ -93,6 +93,7 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
   }
   const std::vector<std::vector<bool>> link_object_allowed = apply_scene_allowed_pairs();
   index_shapes();
+  build_covering_spheres();
   build_self_pairs();
   build_groups();
   build_environment_pairs(link_object_allowed);
@@ -113,6 +114,7 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
     }
   }
   motion_levers_ = std::make_shared<MotionLevers>();
+  free_cells_ = std::make_shared<FreeCells>();
   build_warm_start_grids();
 }
 

@@ -54,6 +54,11 @@ struct CollisionChecker::Scratch {
   // their index, self blocks as -1 - index).
   LinkPoseBlock pose_block;
   std::vector<double> ball_centers;
+  // Covering spheres at the block's poses (per cover_ entry, 4 rows of kPoseBlockLanes);
+  // shape i's are current when cover_placed[i] == block_stamp.
+  std::vector<double> cover_world;
+  std::vector<std::uint64_t> cover_placed;
+  std::uint64_t block_stamp = 0;
   std::vector<int> undecided[kPoseBlockLanes];
   std::vector<MotionItem> motion_items, motion_items_next;
   std::vector<MotionInterval> motion_intervals, motion_intervals_next;
@@ -66,6 +71,21 @@ struct CollisionChecker::Scratch {
   };
   std::vector<MotionWarmStart> motion_warm;
   std::uint64_t motion_stamp = 0;
+};
+
+// is_valid_batch's proven-apart cells of self blocks, built once under `built`.
+struct CollisionChecker::FreeCells {
+  struct Table {
+    int dims = -1;  // keying values (0 to 2); -1: no table for this block
+    int variables[2] = {0, 0};
+    double lower[2] = {0, 0};
+    double cells_per_unit[2] = {0, 0};
+    int cells[2] = {1, 1};
+    bool wraps[2] = {false, false};  // continuous joint: the grid covers one turn
+    std::vector<char> apart;         // per cell: the links are apart everywhere in it
+  };
+  std::once_flag built;
+  std::vector<Table> tables;  // per self block
 };
 
 // Lever arms (m per unit of a configuration value; 1 for prismatic values, which move points by

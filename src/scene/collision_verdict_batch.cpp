@@ -25,6 +25,9 @@ constexpr int kLanes = kPoseBlockLanes;
 // Metres of slack on every ball test: far above the block poses' rounding, far below any gap
 // the balls are meant to find.
 constexpr double kSlack = 1e-9;
+// Covering-sphere pairs of a self block tested for the whole block at most (beyond, the lanes
+// the link balls leave go to the exact tests).
+constexpr int kMaxSpherePairs = 256;
 
 }  // namespace
 
@@ -41,6 +44,31 @@ inline bool CollisionChecker::clear_of_box(const ObstacleBox& box, double x, dou
     gap2 += excess * excess;
   }
   return gap2 > radius * radius;
+}
+
+const double* CollisionChecker::place_cover(int begin, int end, Scratch& s) const {
+  for (int shape = begin; shape < end; ++shape) {
+    if (s.cover_placed[static_cast<std::size_t>(shape)] == s.block_stamp) continue;
+    s.cover_placed[static_cast<std::size_t>(shape)] = s.block_stamp;
+    const int link = shapes_[static_cast<std::size_t>(shape)].link;
+    for (int c = cover_begin_[static_cast<std::size_t>(shape)];
+         c < cover_begin_[static_cast<std::size_t>(shape) + 1]; ++c) {
+      const Eigen::Vector4d& ball = cover_[static_cast<std::size_t>(c)];
+      double* o = s.cover_world.data() + static_cast<std::size_t>(c) * 4 * kLanes;
+      for (int r = 0; r < 3; ++r) {
+        const double* r0 = s.pose_block.entry(link, 3 * r);
+        const double* r1 = s.pose_block.entry(link, 3 * r + 1);
+        const double* r2 = s.pose_block.entry(link, 3 * r + 2);
+        const double* t = s.pose_block.entry(link, 9 + r);
+        for (int k = 0; k < kLanes; ++k) {
+          o[r * kLanes + k] = r0[k] * ball[0] + r1[k] * ball[1] + r2[k] * ball[2] + t[k];
+        }
+      }
+      for (int k = 0; k < kLanes; ++k) o[3 * kLanes + k] = ball[3];
+    }
+  }
+  return s.cover_world.data() +
+         static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(begin)]) * 4 * kLanes;
 }
 
 void CollisionChecker::is_valid_batch(const Eigen::Ref<const Eigen::MatrixXd>& configurations,
@@ -72,6 +100,11 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
                                       Scratch& s) const {
   model_->compute_link_poses_block(configurations.col(first).data(), configurations.outerStride(),
                                    count, s.pose_block);
+  ++s.block_stamp;  // covering spheres are placed for this block when first needed
+  if (s.cover_placed.size() < shapes_.size()) s.cover_placed.resize(shapes_.size(), 0);
+  if (s.cover_world.size() < cover_.size() * 4 * kLanes) {
+    s.cover_world.resize(cover_.size() * 4 * kLanes);
+  }
   // Link ball centres, lane by lane (the loops over lanes vectorise).
   const std::size_t balls = link_balls_.size();
   s.ball_centers.resize(balls * 3 * kLanes);
@@ -111,33 +144,30 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
     bool any = false;
     for (int k = 0; k < count; ++k) any = any || !clear[k];
     if (!any) continue;
-    // The block's shape balls, for the lanes the link balls left: the block is decided when
-    // each of its shapes' balls is clear of the box.
+    // The block's shapes' covering spheres, for the lanes the link balls left: the block is
+    // decided when each is clear of the box.
     bool open[kLanes];
     for (int k = 0; k < kLanes; ++k) open[k] = false;
     for (int p = block.begin; p < block.end; ++p) {
-      const RobotShape& rs =
-          shapes_[static_cast<std::size_t>(environment_pairs_[static_cast<std::size_t>(p)].shape)];
-      double center[3][kLanes];
-      for (int r = 0; r < 3; ++r) {
-        const double* r0 = s.pose_block.entry(rs.link, 3 * r);
-        const double* r1 = s.pose_block.entry(rs.link, 3 * r + 1);
-        const double* r2 = s.pose_block.entry(rs.link, 3 * r + 2);
-        const double* t = s.pose_block.entry(rs.link, 9 + r);
+      const int shape = environment_pairs_[static_cast<std::size_t>(p)].shape;
+      const double* spheres = place_cover(shape, shape + 1, s);
+      const int n = cover_begin_[static_cast<std::size_t>(shape) + 1] -
+                    cover_begin_[static_cast<std::size_t>(shape)];
+      for (int i = 0; i < n; ++i) {
+        const double* c = spheres + static_cast<std::size_t>(i) * 4 * kLanes;
         for (int k = 0; k < kLanes; ++k) {
-          center[r][k] = r0[k] * rs.center[0] + r1[k] * rs.center[1] + r2[k] * rs.center[2] + t[k];
+          open[k] = open[k] || !clear_of_box(box, c[k], c[kLanes + k], c[2 * kLanes + k],
+                                             c[3 * kLanes + k] + kSlack);
         }
-      }
-      const double radius = rs.radius + kSlack;
-      for (int k = 0; k < kLanes; ++k) {
-        open[k] = open[k] || !clear_of_box(box, center[0][k], center[1][k], center[2][k], radius);
       }
     }
     for (int k = 0; k < count; ++k) {
       if (!clear[k] && open[k]) s.undecided[k].push_back(static_cast<int>(b));
     }
   }
-  // Self blocks: the two link balls apart.
+  // Self blocks: the two link balls apart, their covering spheres apart, or the block's table
+  // proving the links apart at the column's values (self_block_tables.cpp).
+  const FreeCells& cells = free_cells();
   for (std::size_t b = 0; b < self_blocks_.size(); ++b) {
     const SelfBlock& block = self_blocks_[b];
     const auto ia = static_cast<std::size_t>(block.link_a);
@@ -145,10 +175,51 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
     const double reach = link_balls_[ia].radius + link_balls_[ib].radius + kSlack;
     const double* a = s.ball_centers.data() + ia * 3 * kLanes;
     const double* c = s.ball_centers.data() + ib * 3 * kLanes;
-    for (int k = 0; k < count; ++k) {
+    bool near[kLanes];
+    bool any = false;
+    for (int k = 0; k < kLanes; ++k) {
       const double dx = a[k] - c[k], dy = a[kLanes + k] - c[kLanes + k],
                    dz = a[2 * kLanes + k] - c[2 * kLanes + k];
-      if (dx * dx + dy * dy + dz * dz <= reach * reach) {
+      near[k] = k < count && dx * dx + dy * dy + dz * dz <= reach * reach;
+      any = any || near[k];
+    }
+    if (!any) continue;
+    // The two links' covering spheres, pair by pair, when they are few.
+    const int la = link_balls_[ia].link, lb = link_balls_[ib].link;
+    const int first_a = shape_begin_[static_cast<std::size_t>(la)];
+    const int end_a = shape_begin_[static_cast<std::size_t>(la) + 1];
+    const int first_b = shape_begin_[static_cast<std::size_t>(lb)];
+    const int end_b = shape_begin_[static_cast<std::size_t>(lb) + 1];
+    const int pairs = (cover_begin_[static_cast<std::size_t>(end_a)] -
+                       cover_begin_[static_cast<std::size_t>(first_a)]) *
+                      (cover_begin_[static_cast<std::size_t>(end_b)] -
+                       cover_begin_[static_cast<std::size_t>(first_b)]);
+    bool open[kLanes];
+    for (int k = 0; k < kLanes; ++k) open[k] = near[k];
+    if (pairs <= kMaxSpherePairs) {
+      for (int k = 0; k < kLanes; ++k) open[k] = false;
+      const double* spheres_a = place_cover(first_a, end_a, s);
+      const double* spheres_b = place_cover(first_b, end_b, s);
+      const int na = cover_begin_[static_cast<std::size_t>(end_a)] -
+                     cover_begin_[static_cast<std::size_t>(first_a)];
+      const int nb = cover_begin_[static_cast<std::size_t>(end_b)] -
+                     cover_begin_[static_cast<std::size_t>(first_b)];
+      for (int i = 0; i < na; ++i) {
+        const double* p = spheres_a + static_cast<std::size_t>(i) * 4 * kLanes;
+        for (int j = 0; j < nb; ++j) {
+          const double* q = spheres_b + static_cast<std::size_t>(j) * 4 * kLanes;
+          for (int k = 0; k < kLanes; ++k) {
+            const double dx = p[k] - q[k], dy = p[kLanes + k] - q[kLanes + k],
+                         dz = p[2 * kLanes + k] - q[2 * kLanes + k];
+            const double r = p[3 * kLanes + k] + q[3 * kLanes + k] + kSlack;
+            open[k] = open[k] || dx * dx + dy * dy + dz * dz <= r * r;
+          }
+        }
+      }
+    }
+    for (int k = 0; k < count; ++k) {
+      if (near[k] && open[k] &&
+          !self_block_free(cells, static_cast<int>(b), configurations.col(first + k).data())) {
         s.undecided[k].push_back(-1 - static_cast<int>(b));
       }
     }

@@ -242,6 +242,9 @@ class CollisionChecker {
   bool self_block_overlaps(const SelfBlock& block, Scratch& s) const;
   // The same, out of line, for check_motion (motion_certificate.cpp).
   bool environment_block_collides(int block, Scratch& s) const;
+  /// The covering spheres of robot shapes [begin, end) at the block's poses, placed on first
+  /// use in the block: rows of kPoseBlockLanes (x, y, z, radius per sphere), consecutive.
+  const double* place_cover(int begin, int end, Scratch& s) const;
   static bool clear_of_box(const ObstacleBox& box, double x, double y, double z, double radius);
   /// is_valid_batch for one block of up to kPoseBlockLanes columns starting at `first`.
   void is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& configurations, Eigen::Index first,
@@ -279,7 +282,12 @@ class CollisionChecker {
   std::vector<SelfBlock> self_blocks_;
   std::vector<LinkBall> link_balls_;    // links with geometry
   std::vector<int> link_ball_of_link_;  // per model link: its index in link_balls_, or -1
-  std::vector<int> shape_begin_;        // per link (and one past): its first index in shapes_
+  // Covering spheres (x, y, z in the link's frame, radius) of robot shape i:
+  // cover_[cover_begin_[i] .. cover_begin_[i + 1]) (covering_spheres.cpp).
+  std::vector<Eigen::Vector4d> cover_;
+  std::vector<int> cover_begin_;
+  void build_covering_spheres();
+  std::vector<int> shape_begin_;  // per link (and one past): its first index in shapes_
   std::vector<EnvironmentPair> environment_pairs_;  // grouped by block
   std::vector<ShapeGroup> groups_;
   std::vector<EnvironmentBlock> blocks_;
@@ -292,6 +300,15 @@ class CollisionChecker {
   // shapes x configuration values, too large for long chains that never need them); shared by
   // copies (they depend only on what copies share).
   std::shared_ptr<MotionLevers> motion_levers_;
+  // is_valid_batch: per self block moved by at most two configuration values, a grid over them
+  // marking the cells over which the two links are proven apart (self_block_tables.cpp);
+  // built by the first is_valid_batch call, shared by copies.
+  struct FreeCells;
+  std::shared_ptr<FreeCells> free_cells_;
+  const FreeCells& free_cells() const;
+  void build_free_cells(FreeCells& out) const;
+  /// True when self block `block`'s table proves its links apart at configuration q.
+  bool self_block_free(const FreeCells& cells, int block, const double* q) const;
   std::vector<WarmStartGrid> warm_grids_;  // per self pair
 };
 

@@ -1,0 +1,102 @@
+// CollisionChecker's covering spheres: for each robot shape, a few balls whose union contains
+// it, tighter than its one bounding ball (is_valid_batch's broad phase tests them for a whole
+// block of configurations).
+//
+// A convex hull is cut into slabs across its longest bounding-box axis; the part of the hull in
+// a slab is the convex hull of its vertices in the slab and of the points where its edges cross
+// the slab's planes, and the slab's ball is centred on those points' bounding box and reaches
+// the farthest of them (so it contains their hull). The slabs cover the hull, so the balls do;
+// each grows by the shape's margin. A primitive keeps its bounding ball.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <hullcheck/scene/collision_checker.hpp>
+#include <vector>
+
+namespace hullcheck {
+namespace {
+
+constexpr int kMaxSlabs = 6;
+
+// Balls (x, y, z, radius; the hull's frame) covering `hull`, one per slab.
+void hull_cover(const ConvexHull& hull, double margin, std::vector<Eigen::Vector4d>& out) {
+  const std::vector<Eigen::Vector3d>& v = hull.vertices();
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  for (const Eigen::Vector3d& p : v) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  Eigen::Index axis = 0;
+  const Eigen::Vector3d size = hi - lo;
+  size.maxCoeff(&axis);
+  const double shortest = std::max(size.minCoeff(), 1e-3 * size[axis]);
+  const int slabs = std::clamp(
+      static_cast<int>(std::lround(size[axis] / std::max(shortest, 1e-12))), 1, kMaxSlabs);
+  // Edges once each (triangles share them; duplicates only cost time).
+  std::vector<std::array<int, 2>> edges;
+  for (const auto& t : hull.triangles()) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = t[static_cast<std::size_t>(e)], b = t[static_cast<std::size_t>((e + 1) % 3)];
+      if (a < b) edges.push_back({a, b});
+    }
+  }
+  std::vector<Eigen::Vector3d> points;
+  for (int k = 0; k < slabs; ++k) {
+    const double a = lo[axis] + size[axis] * k / slabs;
+    const double b = k + 1 == slabs ? hi[axis] : lo[axis] + size[axis] * (k + 1) / slabs;
+    points.clear();
+    for (const Eigen::Vector3d& p : v) {
+      if (p[axis] >= a && p[axis] <= b) points.push_back(p);
+    }
+    for (const auto& e : edges) {
+      const Eigen::Vector3d& p = v[static_cast<std::size_t>(e[0])];
+      const Eigen::Vector3d& q = v[static_cast<std::size_t>(e[1])];
+      for (const double plane : {a, b}) {
+        if ((p[axis] - plane) * (q[axis] - plane) < 0.0) {
+          const double s = (plane - p[axis]) / (q[axis] - p[axis]);
+          Eigen::Vector3d x = p + s * (q - p);
+          x[axis] = plane;
+          points.push_back(x);
+        }
+      }
+    }
+    if (points.empty()) continue;  // no part of the hull in this slab (cannot happen for a solid)
+    Eigen::Vector3d plo = points.front(), phi = points.front();
+    for (const Eigen::Vector3d& p : points) {
+      plo = plo.cwiseMin(p);
+      phi = phi.cwiseMax(p);
+    }
+    const Eigen::Vector3d c = 0.5 * (plo + phi);
+    double r = 0.0;
+    for (const Eigen::Vector3d& p : points) r = std::max(r, (p - c).norm());
+    // A relative hair for the rounding of the crossing points.
+    out.emplace_back(c[0], c[1], c[2], r * (1.0 + 1e-12) + 1e-12 + margin);
+  }
+}
+
+}  // namespace
+
+void CollisionChecker::build_covering_spheres() {
+  cover_begin_.assign(shapes_.size() + 1, 0);
+  std::vector<Eigen::Vector4d> local;
+  for (std::size_t i = 0; i < shapes_.size(); ++i) {
+    cover_begin_[i] = static_cast<int>(cover_.size());
+    const RobotShape& rs = shapes_[i];
+    const CollisionShape& cs = model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)];
+    local.clear();
+    if (cs.shape.kind() == ShapeKind::kConvexHull) {
+      hull_cover(std::get<ConvexHull>(cs.shape.geometry()), cs.shape.margin(), local);
+    }
+    if (local.empty()) {  // a primitive (or a degenerate hull): its bounding ball
+      cover_.emplace_back(rs.center[0], rs.center[1], rs.center[2], rs.radius);
+      continue;
+    }
+    for (const Eigen::Vector4d& ball : local) {
+      const Eigen::Vector3d c = cs.origin * ball.head<3>();  // into the link's frame
+      cover_.emplace_back(c[0], c[1], c[2], ball[3]);
+    }
+  }
+  cover_begin_[shapes_.size()] = static_cast<int>(cover_.size());
+}
+
+}  // namespace hullcheck
