@@ -53,7 +53,10 @@ struct CollisionChecker::Scratch {
   // kPoseBlockLanes), and per lane the blocks the balls left undecided (environment blocks as
   // their index, self blocks as -1 - index).
   LinkPoseBlock pose_block;
-  std::vector<double> ball_centers;
+  std::vector<double> ball_centers;          // link balls as sphere rows (x, y, z, radius)
+  std::vector<double> box_values;            // the obstacles' boxes, packed (ball_tests_block.hpp)
+  std::vector<std::uint8_t> ball_box_clear;  // per link ball and obstacle: lanes clear
+  std::vector<std::uint8_t> sphere_box_clear;  // per covering sphere of a shape
   // Covering spheres at the block's poses (per cover_ entry, 4 rows of kPoseBlockLanes);
   // shape i's are current when cover_placed[i] == block_stamp.
   std::vector<double> cover_world;

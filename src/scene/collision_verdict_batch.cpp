@@ -15,6 +15,7 @@
 #include <hullcheck/scene/collision_checker.hpp>
 #include <string>
 
+#include "ball_tests_block.hpp"
 #include "collision_checker_internals.hpp"
 
 namespace hullcheck {
@@ -27,24 +28,9 @@ constexpr int kLanes = kPoseBlockLanes;
 constexpr double kSlack = 1e-9;
 // Covering-sphere pairs of a self block tested for the whole block at most (beyond, the lanes
 // the link balls leave go to the exact tests).
-constexpr int kMaxSpherePairs = 256;
+constexpr std::size_t kMaxSpherePairs = 256;
 
 }  // namespace
-
-// A ball (centre x, y, z, model frame) clear of an obstacle's box: its centre in the box's frame
-// further than the radius from the box.
-inline bool CollisionChecker::clear_of_box(const ObstacleBox& box, double x, double y, double z,
-                                           double radius) {
-  const double dx = x - box.center[0], dy = y - box.center[1], dz = z - box.center[2];
-  double gap2 = 0.0;
-  for (int r = 0; r < 3; ++r) {
-    const double local =
-        box.rotation_t(r, 0) * dx + box.rotation_t(r, 1) * dy + box.rotation_t(r, 2) * dz;
-    const double excess = std::max(std::abs(local) - box.half_extents[r], 0.0);
-    gap2 += excess * excess;
-  }
-  return gap2 > radius * radius;
-}
 
 const double* CollisionChecker::place_cover(int begin, int end, Scratch& s) const {
   for (int shape = begin; shape < end; ++shape) {
@@ -88,6 +74,16 @@ void CollisionChecker::is_valid_batch(const Eigen::Ref<const Eigen::MatrixXd>& c
   }
   require_current_padding();
   Scratch& s = scratch();
+  // The obstacles' boxes, packed for the SIMD tests.
+  s.box_values.resize(boxes_.size() * detail::kBoxValues);
+  for (std::size_t o = 0; o < boxes_.size(); ++o) {
+    double* v = s.box_values.data() + o * detail::kBoxValues;
+    for (int i = 0; i < 9; ++i) v[i] = boxes_[o].rotation_t(i / 3, i % 3);
+    for (int i = 0; i < 3; ++i) {
+      v[9 + i] = boxes_[o].center[i];
+      v[12 + i] = boxes_[o].half_extents[i];
+    }
+  }
   for (Eigen::Index first = 0; first < configurations.cols(); first += kLanes) {
     const int count =
         static_cast<int>(std::min<Eigen::Index>(kLanes, configurations.cols() - first));
@@ -105,64 +101,58 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
   if (s.cover_world.size() < cover_.size() * 4 * kLanes) {
     s.cover_world.resize(cover_.size() * 4 * kLanes);
   }
-  // Link ball centres, lane by lane (the loops over lanes vectorise).
+  // Link balls as sphere rows (x, y, z, radius), then all of them against every obstacle box.
   const std::size_t balls = link_balls_.size();
-  s.ball_centers.resize(balls * 3 * kLanes);
+  s.ball_centers.resize(balls * 4 * kLanes);
   for (std::size_t i = 0; i < balls; ++i) {
     const LinkBall& ball = link_balls_[i];
+    double* c = s.ball_centers.data() + i * 4 * kLanes;
     for (int r = 0; r < 3; ++r) {
       const double* r0 = s.pose_block.entry(ball.link, 3 * r);
       const double* r1 = s.pose_block.entry(ball.link, 3 * r + 1);
       const double* r2 = s.pose_block.entry(ball.link, 3 * r + 2);
       const double* t = s.pose_block.entry(ball.link, 9 + r);
-      double* c = s.ball_centers.data() + (i * 3 + static_cast<std::size_t>(r)) * kLanes;
       for (int k = 0; k < kLanes; ++k) {
-        c[k] = r0[k] * ball.center[0] + r1[k] * ball.center[1] + r2[k] * ball.center[2] + t[k];
+        c[r * kLanes + k] =
+            r0[k] * ball.center[0] + r1[k] * ball.center[1] + r2[k] * ball.center[2] + t[k];
       }
     }
+    for (int k = 0; k < kLanes; ++k) c[3 * kLanes + k] = ball.radius;
   }
+  const std::size_t obstacles = boxes_.size();
+  s.ball_box_clear.resize(balls * obstacles);
+  detail::spheres_clear_of_boxes(s.ball_centers.data(), balls, s.box_values.data(), obstacles,
+                                 kSlack, s.ball_box_clear.data());
+  const auto lanes_in_use = static_cast<std::uint8_t>((1u << count) - 1u);
   for (int k = 0; k < kLanes; ++k) s.undecided[k].clear();
-  // Environment blocks: every link of the block's group clear of the obstacle's box.
+  // Environment blocks: every link of the block's group clear of the obstacle's box, else every
+  // covering sphere of its shapes.
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     const EnvironmentBlock& block = blocks_[b];
-    const ObstacleBox& box = boxes_[static_cast<std::size_t>(block.obstacle)];
+    const auto o = static_cast<std::size_t>(block.obstacle);
     const ShapeGroup& group = groups_[static_cast<std::size_t>(block.group)];
-    bool clear[kLanes];
-    for (int k = 0; k < kLanes; ++k) clear[k] = true;
+    std::uint8_t clear = 0xff;
     for (int sh = group.begin; sh < group.end;) {
       const int link = shapes_[static_cast<std::size_t>(sh)].link;
       const auto i = static_cast<std::size_t>(link_ball_of_link_[static_cast<std::size_t>(link)]);
-      const double radius = link_balls_[i].radius + kSlack;
-      const double* cx = s.ball_centers.data() + (i * 3) * kLanes;
-      const double* cy = cx + kLanes;
-      const double* cz = cy + kLanes;
-      for (int k = 0; k < kLanes; ++k) {
-        clear[k] = clear[k] && clear_of_box(box, cx[k], cy[k], cz[k], radius);
-      }
+      clear &= s.ball_box_clear[i * obstacles + o];
       while (sh < group.end && shapes_[static_cast<std::size_t>(sh)].link == link) ++sh;
     }
-    bool any = false;
-    for (int k = 0; k < count; ++k) any = any || !clear[k];
-    if (!any) continue;
-    // The block's shapes' covering spheres, for the lanes the link balls left: the block is
-    // decided when each is clear of the box.
-    bool open[kLanes];
-    for (int k = 0; k < kLanes; ++k) open[k] = false;
-    for (int p = block.begin; p < block.end; ++p) {
+    if ((clear & lanes_in_use) == lanes_in_use) continue;
+    std::uint8_t spheres_clear = 0xff;
+    for (int p = block.begin; p < block.end && (spheres_clear & ~clear & lanes_in_use); ++p) {
       const int shape = environment_pairs_[static_cast<std::size_t>(p)].shape;
       const double* spheres = place_cover(shape, shape + 1, s);
-      const int n = cover_begin_[static_cast<std::size_t>(shape) + 1] -
-                    cover_begin_[static_cast<std::size_t>(shape)];
-      for (int i = 0; i < n; ++i) {
-        const double* c = spheres + static_cast<std::size_t>(i) * 4 * kLanes;
-        for (int k = 0; k < kLanes; ++k) {
-          open[k] = open[k] || !clear_of_box(box, c[k], c[kLanes + k], c[2 * kLanes + k],
-                                             c[3 * kLanes + k] + kSlack);
-        }
-      }
+      const auto n = static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(shape) + 1] -
+                                              cover_begin_[static_cast<std::size_t>(shape)]);
+      s.sphere_box_clear.resize(n);
+      detail::spheres_clear_of_boxes(spheres, n, s.box_values.data() + o * detail::kBoxValues, 1,
+                                     kSlack, s.sphere_box_clear.data());
+      for (std::size_t i = 0; i < n; ++i) spheres_clear &= s.sphere_box_clear[i];
     }
+    const std::uint8_t open = static_cast<std::uint8_t>(~(clear | spheres_clear) & lanes_in_use);
     for (int k = 0; k < count; ++k) {
-      if (!clear[k] && open[k]) s.undecided[k].push_back(static_cast<int>(b));
+      if (open & (1u << k)) s.undecided[k].push_back(static_cast<int>(b));
     }
   }
   // Self blocks: the two link balls apart, their covering spheres apart, or the block's table
@@ -173,52 +163,32 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
     const auto ia = static_cast<std::size_t>(block.link_a);
     const auto ib = static_cast<std::size_t>(block.link_b);
     const double reach = link_balls_[ia].radius + link_balls_[ib].radius + kSlack;
-    const double* a = s.ball_centers.data() + ia * 3 * kLanes;
-    const double* c = s.ball_centers.data() + ib * 3 * kLanes;
-    bool near[kLanes];
-    bool any = false;
-    for (int k = 0; k < kLanes; ++k) {
+    const double* a = s.ball_centers.data() + ia * 4 * kLanes;
+    const double* c = s.ball_centers.data() + ib * 4 * kLanes;
+    std::uint8_t near = 0;
+    for (int k = 0; k < count; ++k) {
       const double dx = a[k] - c[k], dy = a[kLanes + k] - c[kLanes + k],
                    dz = a[2 * kLanes + k] - c[2 * kLanes + k];
-      near[k] = k < count && dx * dx + dy * dy + dz * dz <= reach * reach;
-      any = any || near[k];
+      if (dx * dx + dy * dy + dz * dz <= reach * reach) near |= static_cast<std::uint8_t>(1u << k);
     }
-    if (!any) continue;
+    if (near == 0) continue;
     // The two links' covering spheres, pair by pair, when they are few.
     const int la = link_balls_[ia].link, lb = link_balls_[ib].link;
     const int first_a = shape_begin_[static_cast<std::size_t>(la)];
     const int end_a = shape_begin_[static_cast<std::size_t>(la) + 1];
     const int first_b = shape_begin_[static_cast<std::size_t>(lb)];
     const int end_b = shape_begin_[static_cast<std::size_t>(lb) + 1];
-    const int pairs = (cover_begin_[static_cast<std::size_t>(end_a)] -
-                       cover_begin_[static_cast<std::size_t>(first_a)]) *
-                      (cover_begin_[static_cast<std::size_t>(end_b)] -
-                       cover_begin_[static_cast<std::size_t>(first_b)]);
-    bool open[kLanes];
-    for (int k = 0; k < kLanes; ++k) open[k] = near[k];
-    if (pairs <= kMaxSpherePairs) {
-      for (int k = 0; k < kLanes; ++k) open[k] = false;
-      const double* spheres_a = place_cover(first_a, end_a, s);
-      const double* spheres_b = place_cover(first_b, end_b, s);
-      const int na = cover_begin_[static_cast<std::size_t>(end_a)] -
-                     cover_begin_[static_cast<std::size_t>(first_a)];
-      const int nb = cover_begin_[static_cast<std::size_t>(end_b)] -
-                     cover_begin_[static_cast<std::size_t>(first_b)];
-      for (int i = 0; i < na; ++i) {
-        const double* p = spheres_a + static_cast<std::size_t>(i) * 4 * kLanes;
-        for (int j = 0; j < nb; ++j) {
-          const double* q = spheres_b + static_cast<std::size_t>(j) * 4 * kLanes;
-          for (int k = 0; k < kLanes; ++k) {
-            const double dx = p[k] - q[k], dy = p[kLanes + k] - q[kLanes + k],
-                         dz = p[2 * kLanes + k] - q[2 * kLanes + k];
-            const double r = p[3 * kLanes + k] + q[3 * kLanes + k] + kSlack;
-            open[k] = open[k] || dx * dx + dy * dy + dz * dz <= r * r;
-          }
-        }
-      }
+    const auto na = static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(end_a)] -
+                                             cover_begin_[static_cast<std::size_t>(first_a)]);
+    const auto nb = static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(end_b)] -
+                                             cover_begin_[static_cast<std::size_t>(first_b)]);
+    std::uint8_t apart = 0;
+    if (na * nb <= kMaxSpherePairs) {
+      apart = detail::spheres_apart(place_cover(first_a, end_a, s), na,
+                                    place_cover(first_b, end_b, s), nb, kSlack);
     }
     for (int k = 0; k < count; ++k) {
-      if (near[k] && open[k] &&
+      if ((near & ~apart & (1u << k)) &&
           !self_block_free(cells, static_cast<int>(b), configurations.col(first + k).data())) {
         s.undecided[k].push_back(-1 - static_cast<int>(b));
       }

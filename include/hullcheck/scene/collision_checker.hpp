@@ -245,7 +245,6 @@ class CollisionChecker {
   /// The covering spheres of robot shapes [begin, end) at the block's poses, placed on first
   /// use in the block: rows of kPoseBlockLanes (x, y, z, radius per sphere), consecutive.
   const double* place_cover(int begin, int end, Scratch& s) const;
-  static bool clear_of_box(const ObstacleBox& box, double x, double y, double z, double radius);
   /// is_valid_batch for one block of up to kPoseBlockLanes columns starting at `first`.
   void is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& configurations, Eigen::Index first,
                       int count, bool* valid, Scratch& s) const;

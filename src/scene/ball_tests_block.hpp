@@ -1,0 +1,22 @@
+// is_valid_batch's SIMD ball tests (ball_tests_block.cpp), for a block of kPoseBlockLanes
+// configurations. Spheres: rows of kPoseBlockLanes values, x, y, z and radius per sphere (m,
+// model frame). Boxes: kBoxValues each, the world-to-box rotation row by row, the centre, the
+// half extents. Lane k's bit (1 << k) of a mask is set when the test proves it clear by more
+// than `slack` (m).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace hullcheck::detail {
+
+inline constexpr std::size_t kBoxValues = 15;
+
+/// out[i * m + j]: the lanes where sphere i is clear of box j.
+void spheres_clear_of_boxes(const double* spheres, std::size_t n, const double* boxes,
+                            std::size_t m, double slack, std::uint8_t* out);
+/// The lanes where every sphere of `a` is clear of every sphere of `b`.
+std::uint8_t spheres_apart(const double* a, std::size_t na, const double* b, std::size_t nb,
+                           double slack);
+
+}  // namespace hullcheck::detail
