@@ -60,6 +60,36 @@ void SpheresClearOfBoxes(const double* spheres, std::size_t n, const double* box
   }
 }
 
+std::uint8_t SpheresInBox(const double* spheres, std::size_t n, const double* box, double slack) {
+  const hn::ScalableTag<double> d;
+  const std::size_t lanes = hn::Lanes(d);
+  std::uint32_t bits = 0;
+  for (std::size_t base = 0; base < kL; base += lanes) {
+    auto meets = hn::Not(hn::FirstN(d, lanes));  // no lane, so far
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* s = spheres + i * 4 * kL + base;
+      const auto dx = hn::Sub(hn::LoadU(d, s), hn::Set(d, box[9]));
+      const auto dy = hn::Sub(hn::LoadU(d, s + kL), hn::Set(d, box[10]));
+      const auto dz = hn::Sub(hn::LoadU(d, s + 2 * kL), hn::Set(d, box[11]));
+      auto gap2 = hn::Zero(d);
+      for (int r = 0; r < 3; ++r) {
+        auto local = hn::Mul(dx, hn::Set(d, box[3 * r]));
+        local = hn::MulAdd(dy, hn::Set(d, box[3 * r + 1]), local);
+        local = hn::MulAdd(dz, hn::Set(d, box[3 * r + 2]), local);
+        const auto excess = hn::Max(hn::Sub(hn::Abs(local), hn::Set(d, box[12 + r])), hn::Zero(d));
+        gap2 = hn::MulAdd(excess, excess, gap2);
+      }
+      // The ball reaches into the box by more than the slack: its centre is closer to the box
+      // than radius - slack (and that is positive).
+      const auto depth = hn::Sub(hn::LoadU(d, s + 3 * kL), hn::Set(d, slack));
+      meets =
+          hn::Or(meets, hn::And(hn::Gt(depth, hn::Zero(d)), hn::Lt(gap2, hn::Mul(depth, depth))));
+    }
+    bits |= lane_bits(d, meets, base);
+  }
+  return static_cast<std::uint8_t>(bits);
+}
+
 std::uint8_t SpheresApart(const double* a, std::size_t na, const double* b, std::size_t nb,
                           double slack) {
   const hn::ScalableTag<double> d;
@@ -95,6 +125,11 @@ namespace hullcheck::detail {
 
 HWY_EXPORT(SpheresClearOfBoxes);
 HWY_EXPORT(SpheresApart);
+HWY_EXPORT(SpheresInBox);
+
+std::uint8_t spheres_in_box(const double* spheres, std::size_t n, const double* box, double slack) {
+  return HWY_DYNAMIC_DISPATCH(SpheresInBox)(spheres, n, box, slack);
+}
 
 void spheres_clear_of_boxes(const double* spheres, std::size_t n, const double* boxes,
                             std::size_t m, double slack, std::uint8_t* out) {

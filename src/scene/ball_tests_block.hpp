@@ -15,6 +15,8 @@ inline constexpr std::size_t kBoxValues = 15;
 /// out[i * m + j]: the lanes where sphere i is clear of box j.
 void spheres_clear_of_boxes(const double* spheres, std::size_t n, const double* boxes,
                             std::size_t m, double slack, std::uint8_t* out);
+/// The lanes where some sphere reaches into `box` by more than `slack`.
+std::uint8_t spheres_in_box(const double* spheres, std::size_t n, const double* box, double slack);
 /// The lanes where every sphere of `a` is clear of every sphere of `b`.
 std::uint8_t spheres_apart(const double* a, std::size_t na, const double* b, std::size_t nb,
                            double slack);

@@ -278,6 +278,7 @@ void CollisionChecker::build_environment_pairs(
     local_box(o.shape, &center, &half);
     boxes_.push_back({o.pose.linear().transpose(), o.pose * center, half});
     obstacle_points_.push_back(o.pose * point_inside(o.shape));
+    exact_box_.push_back(o.shape.kind() == ShapeKind::kBox && o.shape.margin() == 0.0);
   }
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     for (int o = 0; o < static_cast<int>(scene_.obstacles.size()); ++o) {

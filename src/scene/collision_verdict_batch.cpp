@@ -125,6 +125,7 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
                                  kSlack, s.ball_box_clear.data());
   const auto lanes_in_use = static_cast<std::uint8_t>((1u << count) - 1u);
   for (int k = 0; k < kLanes; ++k) s.undecided[k].clear();
+  std::uint8_t colliding = 0;  // lanes proven in collision by an inner ball
   // Environment blocks: every link of the block's group clear of the obstacle's box, else every
   // covering sphere of its shapes.
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
@@ -151,8 +152,31 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
       for (std::size_t i = 0; i < n; ++i) spheres_clear &= s.sphere_box_clear[i];
     }
     const std::uint8_t open = static_cast<std::uint8_t>(~(clear | spheres_clear) & lanes_in_use);
+    if (open != 0 && exact_box_[o]) {
+      // A box obstacle: a shape's inner ball reaching into it proves the lane colliding.
+      for (int p = block.begin; p < block.end; ++p) {
+        const RobotShape& rs = shapes_[static_cast<std::size_t>(
+            environment_pairs_[static_cast<std::size_t>(p)].shape)];
+        const Eigen::Vector4d& ball =
+            inner_[static_cast<std::size_t>(environment_pairs_[static_cast<std::size_t>(p)].shape)];
+        double inner[4 * kLanes];
+        for (int r = 0; r < 3; ++r) {
+          const double* r0 = s.pose_block.entry(rs.link, 3 * r);
+          const double* r1 = s.pose_block.entry(rs.link, 3 * r + 1);
+          const double* r2 = s.pose_block.entry(rs.link, 3 * r + 2);
+          const double* t = s.pose_block.entry(rs.link, 9 + r);
+          for (int k = 0; k < kLanes; ++k) {
+            inner[r * kLanes + k] = r0[k] * ball[0] + r1[k] * ball[1] + r2[k] * ball[2] + t[k];
+          }
+        }
+        for (int k = 0; k < kLanes; ++k) inner[3 * kLanes + k] = ball[3];
+        colliding |=
+            detail::spheres_in_box(inner, 1, s.box_values.data() + o * detail::kBoxValues, kSlack) &
+            open;
+      }
+    }
     for (int k = 0; k < count; ++k) {
-      if (open & (1u << k)) s.undecided[k].push_back(static_cast<int>(b));
+      if (open & ~colliding & (1u << k)) s.undecided[k].push_back(static_cast<int>(b));
     }
   }
   // Self blocks: the two link balls apart, their covering spheres apart, or the block's table
@@ -188,7 +212,7 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
                                     place_cover(first_b, end_b, s), nb, kSlack);
     }
     for (int k = 0; k < count; ++k) {
-      if ((near & ~apart & (1u << k)) &&
+      if ((near & ~apart & ~colliding & (1u << k)) &&
           !self_block_free(cells, static_cast<int>(b), configurations.col(first + k).data())) {
         s.undecided[k].push_back(-1 - static_cast<int>(b));
       }
@@ -196,8 +220,8 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
   }
   // The exact tests, lane by lane, for what the balls left.
   for (int k = 0; k < count; ++k) {
-    valid[k] = true;
-    if (s.undecided[k].empty()) continue;
+    valid[k] = (colliding & (1u << k)) == 0;
+    if (!valid[k] || s.undecided[k].empty()) continue;
     model_->compute_link_poses_unchecked(configurations.col(first + k).data(), s.link_poses.data());
     place(s.link_poses, s);
     for (const int b : s.undecided[k]) {

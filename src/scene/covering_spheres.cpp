@@ -7,6 +7,10 @@
 // the slab's planes, and the slab's ball is centred on those points' bounding box and reaches
 // the farthest of them (so it contains their hull). The slabs cover the hull, so the balls do;
 // each grows by the shape's margin. A primitive keeps its bounding ball.
+//
+// Also one inner ball per shape (inside it, so a ball reaching into an obstacle proves a
+// collision): a primitive's largest centred one; for a hull, the ball about its vertices' mean
+// reaching the nearest face plane.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -74,9 +78,50 @@ void hull_cover(const ConvexHull& hull, double margin, std::vector<Eigen::Vector
   }
 }
 
+// A ball inside `shape` (x, y, z, radius; its frame); radius 0 when none is found.
+Eigen::Vector4d inner_ball(const Shape& shape) {
+  const double margin = shape.margin();
+  const Shape::Geometry& g = shape.geometry();
+  double r = 0.0;
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  if (const auto* sphere = std::get_if<Sphere>(&g)) {
+    r = sphere->radius;
+  } else if (const auto* box = std::get_if<Box>(&g)) {
+    r = box->half_extents.minCoeff();
+  } else if (const auto* cylinder = std::get_if<Cylinder>(&g)) {
+    r = std::min(cylinder->radius, cylinder->half_length);
+  } else if (const auto* capsule = std::get_if<Capsule>(&g)) {
+    r = capsule->radius;
+  } else if (const auto* hull = std::get_if<ConvexHull>(&g)) {
+    // About the vertices' mean (inside the hull): the distance to the nearest face plane.
+    if (hull->dimension() == 3) {
+      for (const Eigen::Vector3d& v : hull->vertices()) c += v;
+      c /= static_cast<double>(hull->vertices().size());
+      r = INFINITY;
+      for (const auto& t : hull->triangles()) {
+        const Eigen::Vector3d& a = hull->vertices()[static_cast<std::size_t>(t[0])];
+        const Eigen::Vector3d n = (hull->vertices()[static_cast<std::size_t>(t[1])] - a)
+                                      .cross(hull->vertices()[static_cast<std::size_t>(t[2])] - a);
+        if (n.squaredNorm() == 0.0) continue;
+        r = std::min(r, std::abs(n.normalized().dot(a - c)));
+      }
+      if (!std::isfinite(r)) r = 0.0;
+      r *= 1.0 - 1e-9;  // rounding of the planes
+    }
+  }
+  return Eigen::Vector4d(c[0], c[1], c[2], r > 0.0 ? r + margin : margin);
+}
+
 }  // namespace
 
 void CollisionChecker::build_covering_spheres() {
+  inner_.clear();
+  for (const RobotShape& rs : shapes_) {
+    const CollisionShape& cs = model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)];
+    const Eigen::Vector4d ball = inner_ball(cs.shape);
+    const Eigen::Vector3d c = cs.origin * ball.head<3>();
+    inner_.emplace_back(c[0], c[1], c[2], ball[3]);
+  }
   cover_begin_.assign(shapes_.size() + 1, 0);
   std::vector<Eigen::Vector4d> local;
   for (std::size_t i = 0; i < shapes_.size(); ++i) {

@@ -284,6 +284,8 @@ class CollisionChecker {
   // Covering spheres (x, y, z in the link's frame, radius) of robot shape i:
   // cover_[cover_begin_[i] .. cover_begin_[i + 1]) (covering_spheres.cpp).
   std::vector<Eigen::Vector4d> cover_;
+  std::vector<Eigen::Vector4d> inner_;  // per robot shape: a ball inside it (link frame)
+  std::vector<char> exact_box_;         // per obstacle: boxes_ is the obstacle itself
   std::vector<int> cover_begin_;
   void build_covering_spheres();
   std::vector<int> shape_begin_;  // per link (and one past): its first index in shapes_
