@@ -30,6 +30,22 @@ constexpr double kSlack = 1e-9;
 // the link balls leave go to the exact tests).
 constexpr std::size_t kMaxSpherePairs = 256;
 
+// A sphere (x, y, z in `link`'s frame, radius) at the block's poses: rows x, y, z, radius of
+// kLanes values into `out`.
+void place_sphere(const LinkPoseBlock& poses, int link, const Eigen::Vector4d& sphere,
+                  double* out) {
+  for (int r = 0; r < 3; ++r) {
+    const double* r0 = poses.entry(link, 3 * r);
+    const double* r1 = poses.entry(link, 3 * r + 1);
+    const double* r2 = poses.entry(link, 3 * r + 2);
+    const double* t = poses.entry(link, 9 + r);
+    for (int k = 0; k < kLanes; ++k) {
+      out[r * kLanes + k] = r0[k] * sphere[0] + r1[k] * sphere[1] + r2[k] * sphere[2] + t[k];
+    }
+  }
+  for (int k = 0; k < kLanes; ++k) out[3 * kLanes + k] = sphere[3];
+}
+
 }  // namespace
 
 const double* CollisionChecker::place_cover(int begin, int end, Scratch& s) const {
@@ -39,18 +55,8 @@ const double* CollisionChecker::place_cover(int begin, int end, Scratch& s) cons
     const int link = shapes_[static_cast<std::size_t>(shape)].link;
     for (int c = cover_begin_[static_cast<std::size_t>(shape)];
          c < cover_begin_[static_cast<std::size_t>(shape) + 1]; ++c) {
-      const Eigen::Vector4d& ball = cover_[static_cast<std::size_t>(c)];
-      double* o = s.cover_world.data() + static_cast<std::size_t>(c) * 4 * kLanes;
-      for (int r = 0; r < 3; ++r) {
-        const double* r0 = s.pose_block.entry(link, 3 * r);
-        const double* r1 = s.pose_block.entry(link, 3 * r + 1);
-        const double* r2 = s.pose_block.entry(link, 3 * r + 2);
-        const double* t = s.pose_block.entry(link, 9 + r);
-        for (int k = 0; k < kLanes; ++k) {
-          o[r * kLanes + k] = r0[k] * ball[0] + r1[k] * ball[1] + r2[k] * ball[2] + t[k];
-        }
-      }
-      for (int k = 0; k < kLanes; ++k) o[3 * kLanes + k] = ball[3];
+      place_sphere(s.pose_block, link, cover_[static_cast<std::size_t>(c)],
+                   s.cover_world.data() + static_cast<std::size_t>(c) * 4 * kLanes);
     }
   }
   return s.cover_world.data() +
@@ -106,18 +112,9 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
   s.ball_centers.resize(balls * 4 * kLanes);
   for (std::size_t i = 0; i < balls; ++i) {
     const LinkBall& ball = link_balls_[i];
-    double* c = s.ball_centers.data() + i * 4 * kLanes;
-    for (int r = 0; r < 3; ++r) {
-      const double* r0 = s.pose_block.entry(ball.link, 3 * r);
-      const double* r1 = s.pose_block.entry(ball.link, 3 * r + 1);
-      const double* r2 = s.pose_block.entry(ball.link, 3 * r + 2);
-      const double* t = s.pose_block.entry(ball.link, 9 + r);
-      for (int k = 0; k < kLanes; ++k) {
-        c[r * kLanes + k] =
-            r0[k] * ball.center[0] + r1[k] * ball.center[1] + r2[k] * ball.center[2] + t[k];
-      }
-    }
-    for (int k = 0; k < kLanes; ++k) c[3 * kLanes + k] = ball.radius;
+    place_sphere(s.pose_block, ball.link,
+                 Eigen::Vector4d(ball.center[0], ball.center[1], ball.center[2], ball.radius),
+                 s.ball_centers.data() + i * 4 * kLanes);
   }
   const std::size_t obstacles = boxes_.size();
   s.ball_box_clear.resize(balls * obstacles);
@@ -155,21 +152,10 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
     if (open != 0 && exact_box_[o]) {
       // A box obstacle: a shape's inner ball reaching into it proves the lane colliding.
       for (int p = block.begin; p < block.end; ++p) {
-        const RobotShape& rs = shapes_[static_cast<std::size_t>(
-            environment_pairs_[static_cast<std::size_t>(p)].shape)];
-        const Eigen::Vector4d& ball =
-            inner_[static_cast<std::size_t>(environment_pairs_[static_cast<std::size_t>(p)].shape)];
+        const int shape = environment_pairs_[static_cast<std::size_t>(p)].shape;
         double inner[4 * kLanes];
-        for (int r = 0; r < 3; ++r) {
-          const double* r0 = s.pose_block.entry(rs.link, 3 * r);
-          const double* r1 = s.pose_block.entry(rs.link, 3 * r + 1);
-          const double* r2 = s.pose_block.entry(rs.link, 3 * r + 2);
-          const double* t = s.pose_block.entry(rs.link, 9 + r);
-          for (int k = 0; k < kLanes; ++k) {
-            inner[r * kLanes + k] = r0[k] * ball[0] + r1[k] * ball[1] + r2[k] * ball[2] + t[k];
-          }
-        }
-        for (int k = 0; k < kLanes; ++k) inner[3 * kLanes + k] = ball[3];
+        place_sphere(s.pose_block, shapes_[static_cast<std::size_t>(shape)].link,
+                     inner_[static_cast<std::size_t>(shape)], inner);
         colliding |=
             detail::spheres_in_box(inner, 1, s.box_values.data() + o * detail::kBoxValues, kSlack) &
             open;
