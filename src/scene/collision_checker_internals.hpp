@@ -78,14 +78,8 @@ struct CollisionChecker::Scratch {
 
 // is_valid_batch's proven-apart cells of self blocks, built once under `built`.
 struct CollisionChecker::FreeCells {
-  struct Table {
-    int dims = -1;  // keying values (0 to 2); -1: no table for this block
-    int variables[2] = {0, 0};
-    double lower[2] = {0, 0};
-    double cells_per_unit[2] = {0, 0};
-    int cells[2] = {1, 1};
-    bool wraps[2] = {false, false};  // continuous joint: the grid covers one turn
-    std::vector<char> apart;         // per cell: the links are apart everywhere in it
+  struct Table : JointGrid {  // dims -1: no table for this block
+    std::vector<char> apart;  // per cell: the links are apart everywhere in it
   };
   std::once_flag built;
   std::vector<Table> tables;  // per self block

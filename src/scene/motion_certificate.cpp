@@ -16,10 +16,12 @@
 // from the stack, [0, its start] is proven free. An item is decided when its test passes
 // (certified) or when its signed distance at q(m) is at most min_clearance (a contact: then
 // only the left half is searched for an earlier one, everything right of m dropped). Items
-// within their margin are passed on to both halves. An interval stops the search when an item
-// still undecided in it moves less than `resolution` within it (the pair is then within
-// min_clearance + resolution of contact at q(m)). Depth is bounded by log2(rate / resolution);
-// the work by max_states.
+// within their margin are passed on to the parts of the interval outside the window their
+// distance proves around m. An interval stops the search when an item still undecided in it
+// moves less than `resolution` within it and its proven clearance at q(m) is within
+// resolution / 100 of min_clearance. Above that clearance the windows are at least
+// resolution / 100 / rate wide, so the search below the resolution takes a bounded number of
+// further intervals; the work is bounded by max_states.
 //
 // Contents (in order):
 //   check_motion           validates input, runs the search
@@ -37,6 +39,13 @@
 #include "collision_checker_internals.hpp"
 
 namespace hullcheck {
+
+namespace {
+
+// See MotionSearch::keep.
+constexpr double kSettledFraction = 0.01;
+
+}  // namespace
 
 struct CollisionChecker::MotionSearch {
   enum Kind { kEnvironmentBlock, kSelfBlock, kEnvironmentPair, kSelfPair };
@@ -109,8 +118,13 @@ struct CollisionChecker::MotionSearch {
   /// Passes `item` on to the interval's parts; `lower` bounds its signed distance at q(m).
   void keep(const Item& item, double lower) {
     out->push_back(item);
-    at_floor = at_floor || half * item.rate <= options.resolution;
     const double reach = lower - options.min_clearance;  // proven clearance left, m
+    // Below the resolution an item stops the search only when its proven clearance at q(m) is
+    // within a hundredth of the resolution: a pair further away is proven over windows of at
+    // least that size around each middle, so a few more intervals decide it (a waypoint a few
+    // micrometres from contact is reached, not called "maybe").
+    at_floor = at_floor || (half * item.rate <= options.resolution &&
+                            !(reach > kSettledFraction * options.resolution));
     const double w = !(reach > 0.0)    ? 0.0
                      : item.rate > 0.0 ? reach / item.rate
                                        : std::numeric_limits<double>::infinity();

@@ -37,8 +37,6 @@ void CollisionChecker::build_free_cells(FreeCells& out) const {
   const RobotModel& model = *model_;
   const MotionLevers& levers = motion_levers();
   out.tables.assign(self_blocks_.size(), FreeCells::Table{});
-  const Eigen::VectorXd lower = model.lower_limits();
-  const Eigen::VectorXd upper = model.upper_limits();
   Eigen::VectorXd q = model.default_configuration();
   std::vector<Eigen::Isometry3d> poses(model.links().size());
   const auto pose_of = [&](int shape) {
@@ -56,37 +54,17 @@ void CollisionChecker::build_free_cells(FreeCells& out) const {
     const int key_count = relative_drivers(ball_a.link, ball_b.link, 2, keys);
     if (key_count > 2) continue;
     FreeCells::Table& table = out.tables[k];
-    table.dims = key_count;
-    const int cells = key_count == 1 ? kCellsOneValue : kCellsTwoValues;
-    std::size_t total = 1;
+    const std::size_t total =
+        table.setup(model, keys, key_count, key_count == 1 ? kCellsOneValue : kCellsTwoValues);
     double reach = 0.0;  // how far the links' points move relative to each other in a cell
     for (int d = 0; d < key_count; ++d) {
-      const int v = keys[d];
-      double lo = lower[v], hi = upper[v];
-      table.wraps[d] = !std::isfinite(lo) || !std::isfinite(hi);
-      if (table.wraps[d]) {
-        lo = -M_PI;
-        hi = M_PI;
-      }
-      table.variables[d] = v;
-      table.lower[d] = lo;
-      table.cells[d] = hi > lo ? cells : 1;
-      table.cells_per_unit[d] = hi > lo ? cells / (hi - lo) : 0.0;
-      total *= static_cast<std::size_t>(table.cells[d]);
-      const double half_width = hi > lo ? 0.5 * (hi - lo) / cells : 0.0;
-      reach += half_width * levers.self_block_levers(static_cast<Eigen::Index>(k), v);
+      reach += table.half_width(d) *
+               levers.self_block_levers(static_cast<Eigen::Index>(k), table.variables[d]);
     }
     table.apart.assign(total, 0);
     const Eigen::VectorXd q_default = q;
     for (std::size_t cell = 0; cell < total; ++cell) {
-      std::size_t rest = cell;
-      for (int d = key_count - 1; d >= 0; --d) {
-        const auto i = static_cast<int>(rest % static_cast<std::size_t>(table.cells[d]));
-        rest /= static_cast<std::size_t>(table.cells[d]);
-        q[table.variables[d]] = table.cells_per_unit[d] > 0.0
-                                    ? table.lower[d] + (i + 0.5) / table.cells_per_unit[d]
-                                    : lower[table.variables[d]];
-      }
+      table.center(cell, q);
       model.compute_link_poses(q, poses);
       double distance = std::numeric_limits<double>::infinity();
       if (hulls) {
@@ -110,18 +88,8 @@ void CollisionChecker::build_free_cells(FreeCells& out) const {
 bool CollisionChecker::self_block_free(const FreeCells& cells, int block, const double* q) const {
   const FreeCells::Table& table = cells.tables[static_cast<std::size_t>(block)];
   if (table.dims < 0) return false;
-  std::size_t cell = 0;
-  for (int d = 0; d < table.dims; ++d) {
-    double x = q[table.variables[d]];
-    if (table.wraps[d]) x -= 2.0 * M_PI * std::floor((x - table.lower[d]) / (2.0 * M_PI));
-    const double t = (x - table.lower[d]) * table.cells_per_unit[d];
-    if (table.cells_per_unit[d] > 0.0 ? !(t >= 0.0 && t < table.cells[d]) : x != table.lower[d]) {
-      return false;  // outside the grid (beyond a limit): nothing proven
-    }
-    cell = cell * static_cast<std::size_t>(table.cells[d]) +
-           static_cast<std::size_t>(table.cells_per_unit[d] > 0.0 ? static_cast<int>(t) : 0);
-  }
-  return table.apart[cell] != 0;
+  const long cell = table.cell(q, false);  // outside the grid (beyond a limit): nothing proven
+  return cell >= 0 && table.apart[static_cast<std::size_t>(cell)] != 0;
 }
 
 }  // namespace hullcheck

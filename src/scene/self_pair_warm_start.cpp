@@ -15,23 +15,9 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
-const WarmStart& CollisionChecker::WarmStartGrid::at(const double* q) const {
-  int cell = 0;
-  for (int d = 0; d < dims; ++d) {
-    double x = q[variables[d]];
-    if (wraps[d]) x -= 2.0 * M_PI * std::floor((x - lower[d]) / (2.0 * M_PI));
-    const double t = (x - lower[d]) * cells_per_unit[d];
-    const int i = t <= 0.0 ? 0 : t >= cells[d] ? cells[d] - 1 : static_cast<int>(t);
-    cell = cell * cells[d] + i;
-  }
-  return starts[static_cast<std::size_t>(cell)];
-}
-
 void CollisionChecker::build_warm_start_grids() {
   const RobotModel& model = *model_;
   warm_grids_.assign(self_pairs_.size(), WarmStartGrid{});
-  const Eigen::VectorXd lower = model.lower_limits();
-  const Eigen::VectorXd upper = model.upper_limits();
   Eigen::VectorXd q = model.default_configuration();
   std::vector<Eigen::Isometry3d> poses(model.links().size());
   for (std::size_t k = 0; k < self_pairs_.size(); ++k) {
@@ -49,23 +35,8 @@ void CollisionChecker::build_warm_start_grids() {
     const int key_count = relative_drivers(a.link, b.link, 2, keys);
     if (key_count > 2) continue;
     WarmStartGrid& grid = warm_grids_[k];
-    grid.dims = key_count;
-    const int cells = grid.dims == 1 ? kCellsOneValue : kCellsTwoValues;
-    std::size_t total = 1;
-    for (int d = 0; d < grid.dims; ++d) {
-      const int v = keys[d];
-      double lo = lower[v], hi = upper[v];
-      grid.wraps[d] = !std::isfinite(lo) || !std::isfinite(hi);
-      if (grid.wraps[d]) {
-        lo = -M_PI;
-        hi = M_PI;
-      }
-      grid.variables[d] = v;
-      grid.lower[d] = lo;
-      grid.cells[d] = hi > lo ? cells : 1;
-      grid.cells_per_unit[d] = hi > lo ? cells / (hi - lo) : 0.0;
-      total *= static_cast<std::size_t>(grid.cells[d]);
-    }
+    const std::size_t total =
+        grid.setup(model, keys, key_count, key_count == 1 ? kCellsOneValue : kCellsTwoValues);
     grid.starts.resize(total);
     const Shape& shape_a = model.link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape;
     const Shape& shape_b = model.link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape;
@@ -75,14 +46,7 @@ void CollisionChecker::build_warm_start_grids() {
         model.link(b.link).shapes[static_cast<std::size_t>(b.shape)].origin;
     const Eigen::VectorXd q_default = q;
     for (std::size_t cell = 0; cell < total; ++cell) {
-      std::size_t rest = cell;
-      for (int d = grid.dims - 1; d >= 0; --d) {
-        const auto i = static_cast<int>(rest % static_cast<std::size_t>(grid.cells[d]));
-        rest /= static_cast<std::size_t>(grid.cells[d]);
-        q[grid.variables[d]] = grid.cells_per_unit[d] > 0.0
-                                   ? grid.lower[d] + (i + 0.5) / grid.cells_per_unit[d]
-                                   : lower[grid.variables[d]];
-      }
+      grid.center(cell, q);
       model.compute_link_poses(q, poses);
       WarmStart& start = grid.starts[cell];
       const Eigen::Isometry3d pose_a = poses[static_cast<std::size_t>(a.link)] * origin_a;

@@ -198,15 +198,29 @@ class CollisionChecker {
   // taken along the cell's direction (near the best separating direction, so near the answer).
   // clearance and safe_advance use them; is_valid does not (its boolean GJK exits after a few
   // iterations on these pairs, and starting it from the grid's direction measured slower).
-  struct WarmStartGrid {
-    int dims = -1;  // number of keying values; -1: no grid for this pair
+  // Cells over at most two configuration values (joint_grid.cpp): each value's range between
+  // its limits (one turn for a continuous joint) cut into equal cells.
+  struct JointGrid {
+    int dims = -1;  // number of keying values; -1: no grid
     int variables[2] = {0, 0};
     double lower[2] = {0, 0};
     double cells_per_unit[2] = {0, 0};  // cells per radian (or metre)
     int cells[2] = {1, 1};
     bool wraps[2] = {false, false};  // continuous joint: the grid covers one turn
+    /// Over the values keys[0 .. count), `cells_per_value` cells each; returns the cell count.
+    std::size_t setup(const RobotModel& model, const int* keys, int count, int cells_per_value);
+    /// Half a cell's width along value d (0 for a value without range).
+    double half_width(int d) const;
+    /// The cell holding configuration q: clamped into the grid, or -1 outside it unless clamp.
+    long cell(const double* q, bool clamp) const;
+    /// Writes the centre of `cell` into q's keying values.
+    void center(std::size_t cell, Eigen::VectorXd& q) const;
+  };
+  struct WarmStartGrid : JointGrid {
     std::vector<WarmStart> starts;
-    const WarmStart& at(const double* q) const;
+    const WarmStart& at(const double* q) const {
+      return starts[static_cast<std::size_t>(cell(q, true))];
+    }
   };
   /// Fills warm_grids_.
   void build_warm_start_grids();

@@ -10,7 +10,7 @@ enum class MotionVerdict {
   kContact,      ///< Proven to collide: some configuration has a checked pair within
                  ///< min_clearance (m) of touching, or overlapping.
   kNearContact,  ///< Not proven free: a configuration has a pair within min_clearance +
-                 ///< resolution of touching, and no finer test was made (see
+                 ///< resolution / 100 of touching, and no finer test was made (see
                  ///< MotionCheckOptions); none within min_clearance was found.
   kStateBudget,  ///< max_states configurations were evaluated before a decision.
 };
@@ -19,9 +19,11 @@ enum class MotionVerdict {
 struct MotionCheckOptions {
   /// m, >= 0: clearances at or below this count as contact (1e-6: touching shapes).
   double min_clearance = 1e-6;
-  /// m, > 0: the finest relative motion the search resolves. An interval is split only while
-  /// some undecided pair can move more than this within it: a motion passing within
-  /// min_clearance + resolution of contact may be rejected (kNearContact), one passing at
+  /// m, > 0: the finest relative motion the search resolves. An interval is split while some
+  /// undecided pair can move more than this within it, and below that only while the pair's
+  /// clearance at the interval's middle exceeds min_clearance by more than resolution / 100
+  /// (its proven window then decides it in a few more intervals). So a motion passing within
+  /// min_clearance + resolution / 100 of contact may be rejected (kNearContact), one passing at
   /// min_clearance or closer always is. Also bounds how far last_free lies before the contact.
   double resolution = 1e-4;
   /// Configurations evaluated at most (one forward kinematics each); >= 1.
