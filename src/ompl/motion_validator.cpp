@@ -12,12 +12,7 @@ GuaranteedMotionValidator::GuaranteedMotionValidator(
     const MotionCheckOptions& options)
     : ob::MotionValidator(si), validity_(std::move(validity)), options_(options) {
   if (!validity_) throw InputError("GuaranteedMotionValidator: validity checker is null");
-  if (!(options.min_clearance >= 0.0) || !std::isfinite(options.min_clearance) ||
-      !(options.resolution > 0.0) || !std::isfinite(options.resolution) || options.max_states < 1) {
-    throw InputError(
-        "GuaranteedMotionValidator: min_clearance must be finite and >= 0, resolution finite "
-        "and > 0, max_states >= 1");
-  }
+  validate(options, "GuaranteedMotionValidator");
 }
 
 bool GuaranteedMotionValidator::advance(const ob::State* s1, const ob::State* s2,

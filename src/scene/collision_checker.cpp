@@ -42,7 +42,8 @@ void local_box(const Shape& shape, Eigen::Vector3d* center, Eigen::Vector3d* hal
   half->array() += shape.margin();
 }
 
-// A point of the shape, local frame: the origin of a primitive, the mean of a hull's vertices.
+}  // namespace
+
 Eigen::Vector3d point_inside(const Shape& shape) {
   if (shape.kind() != ShapeKind::kConvexHull) return Eigen::Vector3d::Zero();
   const std::vector<Eigen::Vector3d>& v = std::get<ConvexHull>(shape.geometry()).vertices();
@@ -50,8 +51,6 @@ Eigen::Vector3d point_inside(const Shape& shape) {
   for (const Eigen::Vector3d& p : v) sum += p;
   return v.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(v.size()));
 }
-
-}  // namespace
 
 CollisionChecker::Scratch& CollisionChecker::scratch() const {
   // One per thread, shared by every checker: a query uses it from start to end and never
@@ -279,6 +278,11 @@ void CollisionChecker::build_environment_pairs(
     boxes_.push_back({o.pose.linear().transpose(), o.pose * center, half});
     obstacle_points_.push_back(o.pose * point_inside(o.shape));
     exact_box_.push_back(o.shape.kind() == ShapeKind::kBox && o.shape.margin() == 0.0);
+    // Packed as ball_tests_block.hpp's kBoxValues: rotation row by row, centre, half extents.
+    const ObstacleBox& box = boxes_.back();
+    for (int i = 0; i < 9; ++i) box_values_.push_back(box.rotation_t(i / 3, i % 3));
+    for (int i = 0; i < 3; ++i) box_values_.push_back(box.center[i]);
+    for (int i = 0; i < 3; ++i) box_values_.push_back(box.half_extents[i]);
   }
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     for (int o = 0; o < static_cast<int>(scene_.obstacles.size()); ++o) {
@@ -374,6 +378,18 @@ const Shape& CollisionChecker::bounding_shape(int shape) const {
   const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
   const CollisionShape& cs = model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)];
   return cs.element_hull ? *cs.element_hull : cs.shape;
+}
+
+double CollisionChecker::pair_ball_gap(std::size_t i, Scratch& s) const {
+  const std::size_t n_env = environment_pairs_.size();
+  if (i < n_env) {
+    const EnvironmentPair& p = environment_pairs_[i];
+    return box_gap(boxes_[static_cast<std::size_t>(p.obstacle)], center(p.shape, s),
+                   shapes_[static_cast<std::size_t>(p.shape)].radius);
+  }
+  const SelfPair& p = self_pairs_[i - n_env];
+  return (center(p.a, s) - center(p.b, s)).norm() - shapes_[static_cast<std::size_t>(p.a)].radius -
+         shapes_[static_cast<std::size_t>(p.b)].radius;
 }
 
 double CollisionChecker::box_gap(const ObstacleBox& box, const Eigen::Vector3d& c, double radius,

@@ -13,6 +13,10 @@
 
 namespace hullcheck {
 
+/// A point of the shape, its local frame: the origin of a primitive, the mean of a hull's
+/// vertices (collision_checker.cpp).
+Eigen::Vector3d point_inside(const Shape& shape);
+
 struct CollisionChecker::Scratch {
   std::vector<Eigen::Isometry3d> link_poses;
   std::vector<Eigen::Isometry3d> shape_poses;
@@ -53,9 +57,8 @@ struct CollisionChecker::Scratch {
   // kPoseBlockLanes), and per lane the blocks the balls left undecided (environment blocks as
   // their index, self blocks as -1 - index).
   LinkPoseBlock pose_block;
-  std::vector<double> ball_centers;          // link balls as sphere rows (x, y, z, radius)
-  std::vector<double> box_values;            // the obstacles' boxes, packed (ball_tests_block.hpp)
-  std::vector<std::uint8_t> ball_box_clear;  // per link ball and obstacle: lanes clear
+  std::vector<double> ball_centers;            // link balls as sphere rows (x, y, z, radius)
+  std::vector<std::uint8_t> ball_box_clear;    // per link ball and obstacle: lanes clear
   std::vector<std::uint8_t> sphere_box_clear;  // per covering sphere of a shape
   // Covering spheres at the block's poses (per cover_ entry, 4 rows of kPoseBlockLanes);
   // shape i's are current when cover_placed[i] == block_stamp.
@@ -65,7 +68,8 @@ struct CollisionChecker::Scratch {
   std::vector<int> undecided[kPoseBlockLanes];
   std::vector<MotionItem> motion_items, motion_items_next;
   std::vector<MotionInterval> motion_intervals, motion_intervals_next;
-  Eigen::VectorXd motion_q;  // the configuration being evaluated
+  Eigen::VectorXd motion_q;   // the configuration being evaluated
+  Eigen::VectorXd motion_dq;  // q1 - q0 (abs_dq holds its magnitudes)
   // Per self block: its hull query's last warm start within the motion numbered `motion`
   // (motion_stamp grows with every check_motion, so every motion starts cold, as on any thread).
   struct MotionWarmStart {

@@ -1,14 +1,18 @@
 // CollisionChecker::is_valid_batch: validity of a block of configurations at once. Forward
-// kinematics for the block (SIMD), link balls against obstacle boxes and against each other for
-// all lanes, and is_valid's exact tests (collision_verdict.cpp) only for what the balls leave
-// undecided, at poses from the scalar forward kinematics: the verdicts are is_valid's.
+// kinematics for the block (SIMD); link balls, covering spheres and inner balls against
+// obstacle boxes and against each other for all lanes (SIMD kernels, ball_tests_block.cpp); the
+// self blocks' tables of proven-apart cells (self_block_tables.cpp); and is_valid's exact tests
+// (collision_verdict.cpp) only for what those leave undecided, at poses from the scalar forward
+// kinematics: the verdicts are is_valid's.
 //
-// Why identical: a block is skipped only when every link ball it involves is clear by more than
-// kSlack of the obstacle's box or of the other link's ball; the block poses differ from the
-// scalar ones by rounding (below 1e-14 m on the robots tested, test RobotFk.*), so at the scalar
-// poses every shape ball inside those link balls is clear too, and is_valid's per-shape ball
-// tests decide "no overlap" for the block without any other test. Everything else runs exactly
-// as is_valid runs it.
+// Why identical. The block poses differ from the scalar ones by rounding (below 1e-14 m on the
+// robots tested, test RobotFk.*), far below kSlack. A block is skipped when volumes containing
+// its shapes (link balls, covering spheres) are clear by more than kSlack, or when its table
+// proves the links apart by more than 1e-6 m: the shapes are then apart at the scalar poses by
+// more than the queries' tolerance, and is_valid's tests find no overlap in the block. A lane
+// is invalid without exact tests when a ball inside a shape reaches more than kSlack into a box
+// obstacle (the box itself, no margin): the shapes overlap by more than the tolerance, and
+// is_valid finds an overlap too. Everything else runs exactly as is_valid runs it.
 #include <algorithm>
 #include <cmath>
 #include <hullcheck/core/errors.hpp>
@@ -80,16 +84,6 @@ void CollisionChecker::is_valid_batch(const Eigen::Ref<const Eigen::MatrixXd>& c
   }
   require_current_padding();
   Scratch& s = scratch();
-  // The obstacles' boxes, packed for the SIMD tests.
-  s.box_values.resize(boxes_.size() * detail::kBoxValues);
-  for (std::size_t o = 0; o < boxes_.size(); ++o) {
-    double* v = s.box_values.data() + o * detail::kBoxValues;
-    for (int i = 0; i < 9; ++i) v[i] = boxes_[o].rotation_t(i / 3, i % 3);
-    for (int i = 0; i < 3; ++i) {
-      v[9 + i] = boxes_[o].center[i];
-      v[12 + i] = boxes_[o].half_extents[i];
-    }
-  }
   for (Eigen::Index first = 0; first < configurations.cols(); first += kLanes) {
     const int count =
         static_cast<int>(std::min<Eigen::Index>(kLanes, configurations.cols() - first));
@@ -118,7 +112,7 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
   }
   const std::size_t obstacles = boxes_.size();
   s.ball_box_clear.resize(balls * obstacles);
-  detail::spheres_clear_of_boxes(s.ball_centers.data(), balls, s.box_values.data(), obstacles,
+  detail::spheres_clear_of_boxes(s.ball_centers.data(), balls, box_values_.data(), obstacles,
                                  kSlack, s.ball_box_clear.data());
   const auto lanes_in_use = static_cast<std::uint8_t>((1u << count) - 1u);
   for (int k = 0; k < kLanes; ++k) s.undecided[k].clear();
@@ -144,7 +138,7 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
       const auto n = static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(shape) + 1] -
                                               cover_begin_[static_cast<std::size_t>(shape)]);
       s.sphere_box_clear.resize(n);
-      detail::spheres_clear_of_boxes(spheres, n, s.box_values.data() + o * detail::kBoxValues, 1,
+      detail::spheres_clear_of_boxes(spheres, n, box_values_.data() + o * detail::kBoxValues, 1,
                                      kSlack, s.sphere_box_clear.data());
       for (std::size_t i = 0; i < n; ++i) spheres_clear &= s.sphere_box_clear[i];
     }
@@ -157,7 +151,7 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
         place_sphere(s.pose_block, shapes_[static_cast<std::size_t>(shape)].link,
                      inner_[static_cast<std::size_t>(shape)], inner);
         colliding |=
-            detail::spheres_in_box(inner, 1, s.box_values.data() + o * detail::kBoxValues, kSlack) &
+            detail::spheres_in_box(inner, 1, box_values_.data() + o * detail::kBoxValues, kSlack) &
             open;
       }
     }
@@ -172,15 +166,10 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
     const SelfBlock& block = self_blocks_[b];
     const auto ia = static_cast<std::size_t>(block.link_a);
     const auto ib = static_cast<std::size_t>(block.link_b);
-    const double reach = link_balls_[ia].radius + link_balls_[ib].radius + kSlack;
-    const double* a = s.ball_centers.data() + ia * 4 * kLanes;
-    const double* c = s.ball_centers.data() + ib * 4 * kLanes;
-    std::uint8_t near = 0;
-    for (int k = 0; k < count; ++k) {
-      const double dx = a[k] - c[k], dy = a[kLanes + k] - c[kLanes + k],
-                   dz = a[2 * kLanes + k] - c[2 * kLanes + k];
-      if (dx * dx + dy * dy + dz * dz <= reach * reach) near |= static_cast<std::uint8_t>(1u << k);
-    }
+    const std::uint8_t near = static_cast<std::uint8_t>(
+        ~detail::spheres_apart(s.ball_centers.data() + ia * 4 * kLanes, 1,
+                               s.ball_centers.data() + ib * 4 * kLanes, 1, kSlack) &
+        lanes_in_use);
     if (near == 0) continue;
     // The two links' covering spheres, pair by pair, when they are few.
     const int la = link_balls_[ia].link, lb = link_balls_[ib].link;

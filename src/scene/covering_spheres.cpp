@@ -17,13 +17,18 @@
 #include <hullcheck/scene/collision_checker.hpp>
 #include <vector>
 
+#include "collision_checker_internals.hpp"
+
 namespace hullcheck {
 namespace {
 
 constexpr int kMaxSlabs = 6;
 
-// Balls (x, y, z, radius; the hull's frame) covering `hull`, one per slab.
-void hull_cover(const ConvexHull& hull, double margin, std::vector<Eigen::Vector4d>& out) {
+// Balls (x, y, z, radius; the hull's frame) covering a solid `hull`, one per slab, appended to
+// `out`; false (nothing appended) for a flat hull or when a slab holds no part of it: the
+// caller keeps the shape's bounding ball then.
+bool hull_cover(const ConvexHull& hull, double margin, std::vector<Eigen::Vector4d>& out) {
+  if (hull.dimension() != 3) return false;
   const std::vector<Eigen::Vector3d>& v = hull.vertices();
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
   for (const Eigen::Vector3d& p : v) {
@@ -36,14 +41,17 @@ void hull_cover(const ConvexHull& hull, double margin, std::vector<Eigen::Vector
   const double shortest = std::max(size.minCoeff(), 1e-3 * size[axis]);
   const int slabs = std::clamp(
       static_cast<int>(std::lround(size[axis] / std::max(shortest, 1e-12))), 1, kMaxSlabs);
-  // Edges once each (triangles share them; duplicates only cost time).
+  // Every edge, once (two triangles share it).
   std::vector<std::array<int, 2>> edges;
   for (const auto& t : hull.triangles()) {
     for (int e = 0; e < 3; ++e) {
       const int a = t[static_cast<std::size_t>(e)], b = t[static_cast<std::size_t>((e + 1) % 3)];
-      if (a < b) edges.push_back({a, b});
+      edges.push_back({std::min(a, b), std::max(a, b)});
     }
   }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const std::size_t first = out.size();
   std::vector<Eigen::Vector3d> points;
   for (int k = 0; k < slabs; ++k) {
     const double a = lo[axis] + size[axis] * k / slabs;
@@ -64,7 +72,10 @@ void hull_cover(const ConvexHull& hull, double margin, std::vector<Eigen::Vector
         }
       }
     }
-    if (points.empty()) continue;  // no part of the hull in this slab (cannot happen for a solid)
+    if (points.empty()) {  // cannot happen for a solid; not covered otherwise
+      out.resize(first);
+      return false;
+    }
     Eigen::Vector3d plo = points.front(), phi = points.front();
     for (const Eigen::Vector3d& p : points) {
       plo = plo.cwiseMin(p);
@@ -76,6 +87,7 @@ void hull_cover(const ConvexHull& hull, double margin, std::vector<Eigen::Vector
     // A relative hair for the rounding of the crossing points.
     out.emplace_back(c[0], c[1], c[2], r * (1.0 + 1e-12) + 1e-12 + margin);
   }
+  return true;
 }
 
 // A ball inside `shape` (x, y, z, radius; its frame); radius 0 when none is found.
@@ -83,7 +95,7 @@ Eigen::Vector4d inner_ball(const Shape& shape) {
   const double margin = shape.margin();
   const Shape::Geometry& g = shape.geometry();
   double r = 0.0;
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d c = point_inside(shape);  // inside a flat hull too
   if (const auto* sphere = std::get_if<Sphere>(&g)) {
     r = sphere->radius;
   } else if (const auto* box = std::get_if<Box>(&g)) {
@@ -93,10 +105,9 @@ Eigen::Vector4d inner_ball(const Shape& shape) {
   } else if (const auto* capsule = std::get_if<Capsule>(&g)) {
     r = capsule->radius;
   } else if (const auto* hull = std::get_if<ConvexHull>(&g)) {
-    // About the vertices' mean (inside the hull): the distance to the nearest face plane.
+    // About the vertices' mean: the distance to the nearest face plane (a flat hull has no
+    // inside but its margin's).
     if (hull->dimension() == 3) {
-      for (const Eigen::Vector3d& v : hull->vertices()) c += v;
-      c /= static_cast<double>(hull->vertices().size());
       r = INFINITY;
       for (const auto& t : hull->triangles()) {
         const Eigen::Vector3d& a = hull->vertices()[static_cast<std::size_t>(t[0])];
@@ -116,28 +127,23 @@ Eigen::Vector4d inner_ball(const Shape& shape) {
 
 void CollisionChecker::build_covering_spheres() {
   inner_.clear();
-  for (const RobotShape& rs : shapes_) {
-    const CollisionShape& cs = model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)];
-    const Eigen::Vector4d ball = inner_ball(cs.shape);
-    const Eigen::Vector3d c = cs.origin * ball.head<3>();
-    inner_.emplace_back(c[0], c[1], c[2], ball[3]);
-  }
   cover_begin_.assign(shapes_.size() + 1, 0);
   std::vector<Eigen::Vector4d> local;
   for (std::size_t i = 0; i < shapes_.size(); ++i) {
-    cover_begin_[i] = static_cast<int>(cover_.size());
     const RobotShape& rs = shapes_[i];
     const CollisionShape& cs = model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)];
+    const Eigen::Vector4d inner = inner_ball(cs.shape);
+    const Eigen::Vector3d inner_center = cs.origin * inner.head<3>();  // into the link's frame
+    inner_.emplace_back(inner_center[0], inner_center[1], inner_center[2], inner[3]);
+    cover_begin_[i] = static_cast<int>(cover_.size());
     local.clear();
-    if (cs.shape.kind() == ShapeKind::kConvexHull) {
-      hull_cover(std::get<ConvexHull>(cs.shape.geometry()), cs.shape.margin(), local);
-    }
-    if (local.empty()) {  // a primitive (or a degenerate hull): its bounding ball
-      cover_.emplace_back(rs.center[0], rs.center[1], rs.center[2], rs.radius);
+    if (cs.shape.kind() != ShapeKind::kConvexHull ||
+        !hull_cover(std::get<ConvexHull>(cs.shape.geometry()), cs.shape.margin(), local)) {
+      cover_.emplace_back(rs.center[0], rs.center[1], rs.center[2], rs.radius);  // its ball
       continue;
     }
     for (const Eigen::Vector4d& ball : local) {
-      const Eigen::Vector3d c = cs.origin * ball.head<3>();  // into the link's frame
+      const Eigen::Vector3d c = cs.origin * ball.head<3>();
       cover_.emplace_back(c[0], c[1], c[2], ball[3]);
     }
   }

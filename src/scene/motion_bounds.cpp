@@ -147,10 +147,9 @@ double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q
   const std::size_t n_env = environment_pairs_.size();
   const std::size_t n_all = n_env + self_pairs_.size();
   if (s.motions.size() < n_all) s.motions.resize(n_all);
-  if (s.abs_dq.size() != dq.size()) {  // per-thread scratch: allocates on first use only
-    s.abs_dq.resize(dq.size());
-    s.q_end.resize(dq.size());
-  }
+  // Per-thread scratch: allocates on first use only.
+  if (s.abs_dq.size() != dq.size()) s.abs_dq.resize(dq.size());
+  if (s.q_end.size() != dq.size()) s.q_end.resize(dq.size());
   Eigen::VectorXd& abs_dq = s.abs_dq;
   abs_dq = dq.cwiseAbs();
   s.q_end = q + dq;
@@ -164,20 +163,11 @@ double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q
   double best = std::numeric_limits<double>::infinity();
   std::size_t first = n_all;
   for (std::size_t i = 0; i < n_all; ++i) {
-    double lb, motion;
-    if (i < n_env) {
-      const EnvironmentPair& p = environment_pairs_[i];
-      lb = box_gap(boxes_[static_cast<std::size_t>(p.obstacle)], center(p.shape, s),
-                   shapes_[static_cast<std::size_t>(p.shape)].radius);
-      motion = levers.shape_levers.row(p.shape).dot(abs_dq) + extra;
-    } else {
-      const SelfPair& p = self_pairs_[i - n_env];
-      lb = (center(p.a, s) - center(p.b, s)).norm() -
-           shapes_[static_cast<std::size_t>(p.a)].radius -
-           shapes_[static_cast<std::size_t>(p.b)].radius;
-      motion = levers.self_pair_levers.row(static_cast<Eigen::Index>(i - n_env)).dot(abs_dq) +
-               2.0 * extra;
-    }
+    const double lb = pair_ball_gap(i, s);
+    const double motion =
+        i < n_env ? levers.shape_levers.row(environment_pairs_[i].shape).dot(abs_dq) + extra
+                  : levers.self_pair_levers.row(static_cast<Eigen::Index>(i - n_env)).dot(abs_dq) +
+                        2.0 * extra;
     s.lower_bounds[i] = lb;
     s.motions[i] = motion;
     const double key = lb <= min_clearance ? -1.0 : lb / motion;  // inf when motion == 0

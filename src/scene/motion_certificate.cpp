@@ -49,7 +49,8 @@ constexpr double kSettledFraction = 0.01;
 
 struct CollisionChecker::MotionSearch {
   enum Kind { kEnvironmentBlock, kSelfBlock, kEnvironmentPair, kSelfPair };
-  enum class Outcome { kCertified, kPending, kContact };
+  // kOpen: a bounding hull decided nothing; its block's pieces are tested (hull_outcome).
+  enum class Outcome { kCertified, kPending, kContact, kOpen };
   using Item = Scratch::MotionItem;
   using Interval = Scratch::MotionInterval;
 
@@ -88,7 +89,7 @@ struct CollisionChecker::MotionSearch {
   /// A block on an interval too coarse to decide it: kept whole, tested for contact only.
   Outcome probe_block(const Item& item, double gap);
   /// What a block's bounding-hull query `r` (cutoff: the block's margin) decides: kCertified,
-  /// kPending (kept whole), or kContact meaning "undecided: test the pieces".
+  /// kPending (kept whole), or kOpen (test the pieces).
   Outcome hull_outcome(const Item& item, const SignedDistanceResult& r);
   /// True when a bounding volume of size `radius` may move by more than its own size within
   /// the interval (its margin exceeds the radius), above the resolution: its pairs cannot be
@@ -132,29 +133,32 @@ struct CollisionChecker::MotionSearch {
   }
 };
 
+void validate(const MotionCheckOptions& options, const std::string& who) {
+  if (!(options.min_clearance >= 0.0) || !std::isfinite(options.min_clearance) ||
+      !(options.resolution > 0.0) || !std::isfinite(options.resolution) || options.max_states < 1) {
+    throw InputError(who +
+                     ": min_clearance must be finite and >= 0, resolution finite and > 0, "
+                     "max_states >= 1");
+  }
+}
+
 MotionCheckResult CollisionChecker::check_motion(const Eigen::Ref<const Eigen::VectorXd>& q0,
                                                  const Eigen::Ref<const Eigen::VectorXd>& q1,
                                                  const MotionCheckOptions& options) const {
   model_->check_configuration(q0);
   model_->check_configuration(q1);
-  if (!(options.min_clearance >= 0.0) || !std::isfinite(options.min_clearance) ||
-      !(options.resolution > 0.0) || !std::isfinite(options.resolution) || options.max_states < 1) {
-    throw InputError(
-        "CollisionChecker::check_motion: min_clearance must be finite and >= 0, resolution "
-        "finite and > 0, max_states >= 1");
-  }
+  validate(options, "CollisionChecker::check_motion");
   require_current_padding();
   Scratch& s = scratch();
-  if (s.abs_dq.size() != q0.size()) {  // per-thread scratch: allocates on first use only
-    s.abs_dq.resize(q0.size());
-    s.q_end.resize(q0.size());
-  }
+  // Per-thread scratch: allocates on first use only.
+  if (s.motion_dq.size() != q0.size()) s.motion_dq.resize(q0.size());
+  if (s.abs_dq.size() != q0.size()) s.abs_dq.resize(q0.size());
   ++s.motion_stamp;  // the warm starts of earlier motions are not used
   if (s.motion_warm.size() < self_blocks_.size()) s.motion_warm.resize(self_blocks_.size());
-  s.q_end = q1 - q0;  // dq
-  s.abs_dq = s.q_end.cwiseAbs();
+  s.motion_dq = q1 - q0;
+  s.abs_dq = s.motion_dq.cwiseAbs();
   const double extra = prismatic_excess_motion(q0, q1);
-  MotionSearch search{*this, s, options, motion_levers(), q0, s.abs_dq, s.q_end, extra, {}};
+  MotionSearch search{*this, s, options, motion_levers(), q0, s.abs_dq, s.motion_dq, extra, {}};
   return search.run();
 }
 
@@ -188,8 +192,9 @@ MotionCheckResult CollisionChecker::MotionSearch::run_depth_first() {
     s.motion_intervals.pop_back();
     // Segments past this interval's belong to finished intervals.
     s.motion_items.resize(static_cast<std::size_t>(interval.items_end));
-    if (result.states >= options.max_states)
+    if (result.states >= options.max_states) {
       return stop(MotionVerdict::kStateBudget, interval.begin, interval.begin);
+    }
     const double m = 0.5 * (interval.begin + interval.end);
     half = 0.5 * (interval.end - interval.begin);
     const auto kept = static_cast<int>(s.motion_items.size());
@@ -309,7 +314,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_env
     ++result.exact_queries;
     const SignedDistanceResult r = signed_distance_below(
         c.bounding_shape(bound), c.shape_pose(bound, s), o.shape, o.pose, inflated);
-    if (const Outcome h = hull_outcome(item, r); h != Outcome::kContact) return h;
+    if (const Outcome h = hull_outcome(item, r); h != Outcome::kOpen) return h;
   }
   return test_block_pairs(kEnvironmentPair, block.begin, block.end);
 }
@@ -335,7 +340,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
         signed_distance_below(c.bounding_shape(ball_a.bound), c.shape_pose(ball_a.bound, s),
                               c.bounding_shape(ball_b.bound), c.shape_pose(ball_b.bound, s),
                               inflated, warm_start(static_cast<std::size_t>(item.index)));
-    if (const Outcome h = hull_outcome(item, r); h != Outcome::kContact) return h;
+    if (const Outcome h = hull_outcome(item, r); h != Outcome::kOpen) return h;
   }
   return test_block_pairs(kSelfPair, block.begin, block.end);
 }
@@ -355,7 +360,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::hull_out
     keep(item, r.signed_distance);
     return Outcome::kPending;
   }
-  return Outcome::kContact;  // not decided by the hulls: the caller tests the pieces
+  return Outcome::kOpen;
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::probe_block(
@@ -399,18 +404,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_blo
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pair(
     std::size_t pair, const Item& item) {
   const double inflated = margin(item.rate);
-  double gap;  // a lower bound on the signed distance, from the shapes' balls
-  const std::size_t n_env = c.environment_pairs_.size();
-  if (pair < n_env) {
-    const EnvironmentPair& p = c.environment_pairs_[pair];
-    gap = c.box_gap(c.boxes_[static_cast<std::size_t>(p.obstacle)], c.center(p.shape, s),
-                    c.shapes_[static_cast<std::size_t>(p.shape)].radius);
-  } else {
-    const SelfPair& p = c.self_pairs_[pair - n_env];
-    gap = (c.center(p.a, s) - c.center(p.b, s)).norm() -
-          c.shapes_[static_cast<std::size_t>(p.a)].radius -
-          c.shapes_[static_cast<std::size_t>(p.b)].radius;
-  }
+  const double gap = c.pair_ball_gap(pair, s);
   if (gap > inflated) return Outcome::kCertified;
   // Where even an upper bound on the distance (from a point of one shape to a point of the
   // other) is within the margin, no test can certify the pair over this interval, above the
@@ -469,12 +463,11 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::exact_ou
   // to 1e-10 x the shapes' size, far below min_clearance's default). An answer that did not
   // converge certifies nothing: the pair is split further (or reported near contact).
   const double inflated = margin(rate);
-  if (r.status == Status::kAboveCutoff ||
-      (r.status == Status::kConverged && r.signed_distance > inflated)) {
+  if (r.status == Status::kAboveCutoff) {
     return r.signed_distance >= inflated ? Outcome::kCertified : Outcome::kPending;
   }
-  if (r.signed_distance <= options.min_clearance) return Outcome::kContact;
-  return Outcome::kPending;
+  if (r.status == Status::kConverged && r.signed_distance > inflated) return Outcome::kCertified;
+  return r.signed_distance <= options.min_clearance ? Outcome::kContact : Outcome::kPending;
 }
 
 }  // namespace hullcheck

@@ -1,8 +1,8 @@
 // is_valid_batch's tables of self blocks moved by at most two configuration values: a grid over
 // those values, each cell marked when the block's two links are proven apart over all of it.
 //
-// The proof for a cell: the links' distance at the cell's centre (their bounding hulls' when
-// both have one, which is at most any of their pieces' distances; otherwise the smallest over
+// The proof for a cell: the links' converged distance at the cell's centre (their bounding hulls'
+// when both have one, which is at most any of their pieces' distances; otherwise the smallest over
 // the block's pairs) minus how far their points can move relative to each other within the
 // cell (half the cell's width per value times the block's lever arm for that value,
 // motion_bounds.cpp) exceeds kApartSlack. Out of the grid's range (values beyond the limits),
@@ -66,17 +66,20 @@ void CollisionChecker::build_free_cells(FreeCells& out) const {
     for (std::size_t cell = 0; cell < total; ++cell) {
       table.center(cell, q);
       model.compute_link_poses(q, poses);
+      // Only converged distances prove anything; any other answer leaves the cell unproven.
+      const auto proven = [](const SignedDistanceResult& r) {
+        return r.status == Status::kConverged ? r.signed_distance
+                                              : -std::numeric_limits<double>::infinity();
+      };
       double distance = std::numeric_limits<double>::infinity();
       if (hulls) {
-        distance = signed_distance(bounding_shape(ball_a.bound), pose_of(ball_a.bound),
-                                   bounding_shape(ball_b.bound), pose_of(ball_b.bound))
-                       .signed_distance;
+        distance = proven(signed_distance(bounding_shape(ball_a.bound), pose_of(ball_a.bound),
+                                          bounding_shape(ball_b.bound), pose_of(ball_b.bound)));
       } else {
         for (int p = block.begin; p < block.end; ++p) {
           const SelfPair& pair = self_pairs_[static_cast<std::size_t>(p)];
-          distance = std::min(distance, signed_distance(shape_of(pair.a), pose_of(pair.a),
-                                                        shape_of(pair.b), pose_of(pair.b))
-                                            .signed_distance);
+          distance = std::min(distance, proven(signed_distance(shape_of(pair.a), pose_of(pair.a),
+                                                               shape_of(pair.b), pose_of(pair.b))));
         }
       }
       table.apart[cell] = distance - reach > kApartSlack ? 1 : 0;

@@ -497,3 +497,26 @@ TEST(ValidityChecker, AgreesWithExactClearanceMbmPanda) {
 
 }  // namespace
 }  // namespace hullcheck
+
+namespace hullcheck {
+namespace {
+
+TEST(GuaranteedMotions, BadOptionsNameTheValidatorAndTheOption) {
+  const LoadedRobot robot = test::load_robot(test::own_arm());
+  auto checker = test::make_checker(robot, PlanningScene{});
+  const std::vector<int> group = group_variables(*robot.model, robot.srdf, "arm");
+  PlanningSetup setup = make_planning_setup(checker, group, robot.model->default_configuration());
+  const ob::SpaceInformationPtr& si = setup.setup->getSpaceInformation();
+  MotionCheckOptions bad;
+  bad.resolution = 0.0;
+  const std::string message =
+      test::input_error_of([&] { GuaranteedMotionValidator(si, setup.validity, bad); });
+  EXPECT_NE(message.find("GuaranteedMotionValidator"), std::string::npos) << message;
+  EXPECT_NE(message.find("resolution"), std::string::npos) << message;
+  bad = {};
+  bad.max_states = 0;
+  EXPECT_THROW(GuaranteedMotionValidator(si, setup.validity, bad), InputError);
+}
+
+}  // namespace
+}  // namespace hullcheck

@@ -278,6 +278,9 @@ class CollisionChecker {
   /// signed_distance_below(cutoff) of checked pair i (environment pairs first, then self pairs)
   /// at the shape poses of the current query.
   SignedDistanceResult pair_distance_below(std::size_t i, double cutoff, Scratch& s) const;
+  /// A lower bound on checked pair i's signed distance (numbered as pair_distance_below's) from
+  /// its shapes' balls (and the obstacle's box) at the current query's poses.
+  double pair_ball_gap(std::size_t i, Scratch& s) const;
   double box_gap(const ObstacleBox& box, const Eigen::Vector3d& c, double radius,
                  Eigen::Vector3d* direction = nullptr) const;
   /// Extra motion bound (m) over the straight motion q0 -> q1 from prismatic values beyond the
@@ -300,6 +303,7 @@ class CollisionChecker {
   std::vector<Eigen::Vector4d> cover_;
   std::vector<Eigen::Vector4d> inner_;  // per robot shape: a ball inside it (link frame)
   std::vector<char> exact_box_;         // per obstacle: boxes_ is the obstacle itself
+  std::vector<double> box_values_;      // boxes_ packed for the SIMD tests (ball_tests_block.hpp)
   std::vector<int> cover_begin_;
   void build_covering_spheres();
   std::vector<int> shape_begin_;  // per link (and one past): its first index in shapes_

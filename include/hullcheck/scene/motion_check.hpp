@@ -2,6 +2,8 @@
 // collision-free at every point, or the first contact along it.
 #pragma once
 
+#include <string>
+
 namespace hullcheck {
 
 /// How a motion check ended.
@@ -35,6 +37,10 @@ struct MotionCheckOptions {
   /// holding one; last_free is 0 and `contact` the state found, not necessarily the first.
   bool locate_contact = true;
 };
+
+/// Throws InputError, prefixed with `who`, unless min_clearance is finite and >= 0, resolution
+/// finite and > 0 and max_states >= 1.
+void validate(const MotionCheckOptions& options, const std::string& who);
 
 /// Result of CollisionChecker::check_motion. Fractions are of the motion: t in [0, 1] is the
 /// configuration q0 + t (q1 - q0).
