@@ -113,7 +113,7 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
     }
   }
   motion_levers_ = std::make_shared<MotionLevers>();
-  free_cells_ = std::make_shared<FreeCells>();
+  self_tables_ = std::make_shared<SelfTables>();
   build_warm_start_grids();
 }
 

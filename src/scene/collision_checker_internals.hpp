@@ -4,9 +4,11 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <hullcheck/scene/collision_checker.hpp>
+#include <memory>
 #include <mutex>
 #include <utility>
 #include <vector>
@@ -67,6 +69,9 @@ struct CollisionChecker::Scratch {
   std::uint64_t block_stamp = 0;
   std::vector<int> undecided[kPoseBlockLanes];
   std::vector<MotionItem> motion_items, motion_items_next;
+  // Self-block tables: the configuration and link poses at the centre of a cell being measured.
+  Eigen::VectorXd table_q;
+  std::vector<Eigen::Isometry3d> table_poses;
   std::vector<MotionInterval> motion_intervals, motion_intervals_next;
   Eigen::VectorXd motion_q;   // the configuration being evaluated
   Eigen::VectorXd motion_dq;  // q1 - q0 (abs_dq holds its magnitudes)
@@ -80,13 +85,25 @@ struct CollisionChecker::Scratch {
   std::uint64_t motion_stamp = 0;
 };
 
-// is_valid_batch's proven-apart cells of self blocks, built once under `built`.
-struct CollisionChecker::FreeCells {
-  struct Table : JointGrid {  // dims -1: no table for this block
-    std::vector<char> apart;  // per cell: the links are apart everywhere in it
-  };
+// A self block's distance table (self_block_tables.cpp): a grid over the values moving its
+// links relative to each other, per cell the packed bounds on their signed distance anywhere in
+// the cell (kUnmeasured until a query measures it).
+// Metres by which a self block's table bounds must prove its links apart (or overlapping) to
+// decide it without exact tests: far above the queries' tolerance, so that the exact tests
+// would give the same verdict.
+constexpr double kTableSlack = 1e-6;
+
+struct CollisionChecker::SelfTable : JointGrid {
+  static constexpr std::uint64_t kUnmeasured = ~std::uint64_t{0};
+  double cap = 0.0;                                      // lower bounds are measured up to this, m
+  std::unique_ptr<std::atomic<std::uint64_t>[]> bounds;  // per cell
+};
+
+// The tables of one checker's self blocks, from the model's shared set (self_block_tables.cpp).
+struct CollisionChecker::SelfTables {
   std::once_flag built;
-  std::vector<Table> tables;  // per self block
+  std::shared_ptr<void> owner;        // keeps the model's shared tables alive
+  std::vector<SelfTable*> per_block;  // per self block: its table, or nullptr
 };
 
 // Lever arms (m per unit of a configuration value; 1 for prismatic values, which move points by

@@ -63,16 +63,30 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, const Shape& other,
 
 [[gnu::always_inline]] inline bool CollisionChecker::self_block_overlaps(const SelfBlock& block,
                                                                          Scratch& s) const {
+  const bool single = block.end - block.begin == 1;
+  const SelfPair& first = self_pairs_[static_cast<std::size_t>(block.begin)];
+  // Balls: the two links' (one pair: its shapes', which contain them more tightly).
+  const double reach = single ? shapes_[static_cast<std::size_t>(first.a)].radius +
+                                    shapes_[static_cast<std::size_t>(first.b)].radius
+                              : link_balls_[static_cast<std::size_t>(block.link_a)].radius +
+                                    link_balls_[static_cast<std::size_t>(block.link_b)].radius;
+  const Eigen::Vector3d& center_a =
+      single ? center(first.a, s) : s.link_centers[static_cast<std::size_t>(block.link_a)];
+  const Eigen::Vector3d& center_b =
+      single ? center(first.b, s) : s.link_centers[static_cast<std::size_t>(block.link_b)];
+  if ((center_a - center_b).squaredNorm() > reach * reach) return false;
+  // The block's distance table, when the query has a configuration: bounds proving the links
+  // apart or overlapping by more than kTableSlack decide (the exact tests below would agree).
+  if (s.q != nullptr) {
+    double lower = 0.0, upper = 0.0;
+    if (self_block_bounds(static_cast<int>(&block - self_blocks_.data()), s.q, s, &lower, &upper)) {
+      if (lower > kTableSlack) return false;
+      if (upper < -kTableSlack) return true;
+    }
+  }
   // Non-zero when the pieces meeting the other link's hull are marked with it (below).
   std::uint64_t mark = 0;
-  if (block.end - block.begin > 1) {
-    const double reach = link_balls_[static_cast<std::size_t>(block.link_a)].radius +
-                         link_balls_[static_cast<std::size_t>(block.link_b)].radius;
-    if ((s.link_centers[static_cast<std::size_t>(block.link_a)] -
-         s.link_centers[static_cast<std::size_t>(block.link_b)])
-            .squaredNorm() > reach * reach) {
-      return false;
-    }
+  if (!single) {
     // Links that are one shape or one decomposed mesh: their hulls first.
     const int bound_a = link_balls_[static_cast<std::size_t>(block.link_a)].bound;
     const int bound_b = link_balls_[static_cast<std::size_t>(block.link_b)].bound;
@@ -97,9 +111,11 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, const Shape& other,
                       s.meets_other[static_cast<std::size_t>(p.b)] != mark)) {
       continue;  // one of the two pieces is clear of the other link's hull
     }
-    const double reach = shapes_[static_cast<std::size_t>(p.a)].radius +
-                         shapes_[static_cast<std::size_t>(p.b)].radius;
-    if ((center(p.a, s) - center(p.b, s)).squaredNorm() > reach * reach) continue;
+    if (!single) {
+      const double pair_reach = shapes_[static_cast<std::size_t>(p.a)].radius +
+                                shapes_[static_cast<std::size_t>(p.b)].radius;
+      if ((center(p.a, s) - center(p.b, s)).squaredNorm() > pair_reach * pair_reach) continue;
+    }
     if (intersect(shape_of(p.a), shape_pose(p.a, s), shape_of(p.b), shape_pose(p.b, s))) {
       return true;
     }
@@ -119,12 +135,18 @@ bool CollisionChecker::is_valid(const Eigen::Ref<const Eigen::VectorXd>& q) cons
   model_->check_configuration(q);
   Scratch& s = scratch();
   model_->compute_link_poses_unchecked(q.data(), s.link_poses.data());
-  return is_valid_at(s.link_poses);
+  place(s.link_poses, s);
+  s.q = q.data();  // self blocks' distance tables
+  return placed_is_valid(s);
 }
 
 bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_poses) const {
   Scratch& s = scratch();
   place(link_poses, s);
+  return placed_is_valid(s);
+}
+
+bool CollisionChecker::placed_is_valid(Scratch& s) const {
   for (const EnvironmentBlock& block : blocks_) {
     if (environment_block_overlaps(block, s)) return false;
   }

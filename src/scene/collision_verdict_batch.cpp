@@ -1,17 +1,18 @@
 // CollisionChecker::is_valid_batch: validity of a block of configurations at once. Forward
 // kinematics for the block (SIMD); link balls, covering spheres and inner balls against
 // obstacle boxes and against each other for all lanes (SIMD kernels, ball_tests_block.cpp); the
-// self blocks' tables of proven-apart cells (self_block_tables.cpp); and is_valid's exact tests
+// self blocks' distance tables (self_block_tables.cpp); and is_valid's exact tests
 // (collision_verdict.cpp) only for what those leave undecided, at poses from the scalar forward
 // kinematics: the verdicts are is_valid's.
 //
 // Why identical. The block poses differ from the scalar ones by rounding (below 1e-14 m on the
 // robots tested, test RobotFk.*), far below kSlack. A block is skipped when volumes containing
 // its shapes (link balls, covering spheres) are clear by more than kSlack, or when its table
-// proves the links apart by more than 1e-6 m: the shapes are then apart at the scalar poses by
-// more than the queries' tolerance, and is_valid's tests find no overlap in the block. A lane
+// proves the links apart by more than kTableSlack: the shapes are then apart at the scalar poses
+// by more than the queries' tolerance, and is_valid's tests find no overlap in the block. A lane
 // is invalid without exact tests when a ball inside a shape reaches more than kSlack into a box
-// obstacle (the box itself, no margin): the shapes overlap by more than the tolerance, and
+// obstacle (the box itself, no margin), or when a self block's table proves its links
+// overlapping by more than kTableSlack: the shapes overlap by more than the tolerance, and
 // is_valid finds an overlap too. Everything else runs exactly as is_valid runs it.
 #include <algorithm>
 #include <cmath>
@@ -160,8 +161,7 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
     }
   }
   // Self blocks: the two link balls apart, their covering spheres apart, or the block's table
-  // proving the links apart at the column's values (self_block_tables.cpp).
-  const FreeCells& cells = free_cells();
+  // proving the links apart (or overlapping) at the column's values (self_block_tables.cpp).
   for (std::size_t b = 0; b < self_blocks_.size(); ++b) {
     const SelfBlock& block = self_blocks_[b];
     const auto ia = static_cast<std::size_t>(block.link_a);
@@ -187,10 +187,17 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
                                     place_cover(first_b, end_b, s), nb, kSlack);
     }
     for (int k = 0; k < count; ++k) {
-      if ((near & ~apart & ~colliding & (1u << k)) &&
-          !self_block_free(cells, static_cast<int>(b), configurations.col(first + k).data())) {
-        s.undecided[k].push_back(-1 - static_cast<int>(b));
+      if (!(near & ~apart & ~colliding & (1u << k))) continue;
+      double lower = 0.0, upper = 0.0;
+      if (self_block_bounds(static_cast<int>(b), configurations.col(first + k).data(), s, &lower,
+                            &upper)) {
+        if (lower > kTableSlack) continue;
+        if (upper < -kTableSlack) {
+          colliding |= static_cast<std::uint8_t>(1u << k);
+          continue;
+        }
       }
+      s.undecided[k].push_back(-1 - static_cast<int>(b));
     }
   }
   // The exact tests, lane by lane, for what the balls left.

@@ -1,9 +1,18 @@
-// CollisionChecker::JointGrid: cells over at most two configuration values, shared by the
-// warm-start grids of self pairs and the proven-apart tables of self blocks.
+// CollisionChecker::JointGrid: cells over at most kMaxGridValues configuration values, shared by
+// the warm-start grids of self pairs and the distance tables of self blocks.
 #include <cmath>
 #include <hullcheck/scene/collision_checker.hpp>
 
 namespace hullcheck {
+
+namespace {
+
+// Value x of a continuous joint taken into [lower, lower + one turn).
+double wrapped(double x, double lower) {
+  return x - 2.0 * M_PI * std::floor((x - lower) / (2.0 * M_PI));
+}
+
+}  // namespace
 
 std::size_t CollisionChecker::JointGrid::setup(const RobotModel& model, const int* keys, int count,
                                                int cells_per_value) {
@@ -34,7 +43,7 @@ long CollisionChecker::JointGrid::cell(const double* q, bool clamp) const {
   long cell = 0;
   for (int d = 0; d < dims; ++d) {
     double x = q[variables[d]];
-    if (wraps[d]) x -= 2.0 * M_PI * std::floor((x - lower[d]) / (2.0 * M_PI));
+    if (wraps[d]) x = wrapped(x, lower[d]);
     const double t = (x - lower[d]) * cells_per_unit[d];
     int i = 0;
     if (cells_per_unit[d] > 0.0) {
@@ -47,6 +56,24 @@ long CollisionChecker::JointGrid::cell(const double* q, bool clamp) const {
     } else if (!clamp && x != lower[d]) {
       return -1;
     }
+    cell = cell * cells[d] + i;
+  }
+  return cell;
+}
+
+long CollisionChecker::JointGrid::locate(const double* q, double* offsets) const {
+  long cell = 0;
+  for (int d = 0; d < dims; ++d) {
+    double x = q[variables[d]];
+    if (wraps[d]) x = wrapped(x, lower[d]);
+    int i = 0;
+    double centre = lower[d];
+    if (cells_per_unit[d] > 0.0) {
+      const double t = (x - lower[d]) * cells_per_unit[d];
+      i = t >= 0.0 && t < cells[d] ? static_cast<int>(t) : (t >= cells[d] ? cells[d] - 1 : 0);
+      centre = lower[d] + (i + 0.5) / cells_per_unit[d];
+    }
+    offsets[d] = std::abs(x - centre);
     cell = cell * cells[d] + i;
   }
   return cell;

@@ -25,14 +25,17 @@ std::vector<std::vector<bool>> CollisionChecker::joints_above_links() const {
   return above;
 }
 
-int CollisionChecker::relative_drivers(int link_a, int link_b, int at_most, int* keys) const {
+int CollisionChecker::relative_drivers(int link_a, int link_b, int at_most, int* keys,
+                                       bool* revolute) const {
   // The joints above exactly one link are those between it and the two links' deepest common
   // ancestor: climb from the deeper link until both meet.
   int count = 0;
+  if (revolute != nullptr) *revolute = true;
   const auto climb = [&](int* link) {
     const Joint& joint = model_->joint(model_->link(*link).parent_joint);
     *link = joint.parent_link;
     if (joint.type == JointType::kFixed) return true;
+    if (revolute != nullptr && joint.type == JointType::kPrismatic) *revolute = false;
     const int v = joint.driver();
     if (std::find(keys, keys + std::min(count, at_most), v) != keys + std::min(count, at_most)) {
       return true;

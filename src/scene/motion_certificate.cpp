@@ -44,6 +44,8 @@ namespace {
 
 // See MotionSearch::keep.
 constexpr double kSettledFraction = 0.01;
+// Cells of a self block's distance table that one interval's test walks at most.
+constexpr int kMaxTableCells = 64;
 
 }  // namespace
 
@@ -65,6 +67,7 @@ struct CollisionChecker::MotionSearch {
   MotionCheckResult result;
 
   // The interval being examined.
+  double centre = 0.0;
   double half = 0.0;
   double contact_rate = 0.0;  // rate of the item found in contact
   bool at_floor = false;      // an undecided item moves less than `resolution` in it
@@ -89,8 +92,9 @@ struct CollisionChecker::MotionSearch {
   /// A block on an interval too coarse to decide it: kept whole, tested for contact only.
   Outcome probe_block(const Item& item, double gap);
   /// What a block's bounding-hull query `r` (cutoff: the block's margin) decides: kCertified,
-  /// kPending (kept whole), or kOpen (test the pieces).
-  Outcome hull_outcome(const Item& item, const SignedDistanceResult& r);
+  /// kPending (kept whole), or kOpen (test the pieces). `lower` is another lower bound on the
+  /// block's signed distance at q(m) (its table's; -inf when none).
+  Outcome hull_outcome(const Item& item, const SignedDistanceResult& r, double lower);
   /// True when a bounding volume of size `radius` may move by more than its own size within
   /// the interval (its margin exceeds the radius), above the resolution: its pairs cannot be
   /// told apart yet.
@@ -270,6 +274,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::examine(
     double m, const std::vector<Item>& in, int begin, int end) {
   at_floor = false;
   window = std::numeric_limits<double>::infinity();
+  centre = m;
   ++result.states;
   s.motion_q = q0 + m * dq;
   c.model_->compute_link_poses_unchecked(s.motion_q.data(), s.link_poses.data());
@@ -314,7 +319,10 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_env
     ++result.exact_queries;
     const SignedDistanceResult r = signed_distance_below(
         c.bounding_shape(bound), c.shape_pose(bound, s), o.shape, o.pose, inflated);
-    if (const Outcome h = hull_outcome(item, r); h != Outcome::kOpen) return h;
+    if (const Outcome h = hull_outcome(item, r, -std::numeric_limits<double>::infinity());
+        h != Outcome::kOpen) {
+      return h;
+    }
   }
   return test_block_pairs(kEnvironmentPair, block.begin, block.end);
 }
@@ -330,8 +338,23 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
                          .norm() -
                      ball_a.radius - ball_b.radius;
   if (gap > inflated) return Outcome::kCertified;
+  // The block's distance table: the cells the interval's motion crosses, all above
+  // min_clearance, prove it over the whole interval; the cell of q(m) bounds it there.
+  double lower = -std::numeric_limits<double>::infinity(), upper = 0.0;
+  if (c.self_block_segment_lower(item.index, q0.data(), dq.data(), centre - half, centre + half,
+                                 kMaxTableCells, options.min_clearance, s, &lower)) {
+    return Outcome::kCertified;
+  }
+  if (c.self_block_bounds(item.index, s.q, s, &lower, &upper)) {
+    if (lower > inflated) return Outcome::kCertified;
+    if (upper <= options.min_clearance) {
+      out->push_back(item);
+      contact_rate = item.rate;
+      return Outcome::kContact;
+    }
+  }
   if (coarse(inflated, std::max(ball_a.radius, ball_b.radius), item.rate)) {
-    return probe_block(item, gap);
+    return probe_block(item, std::max(gap, lower));
   }
   if (ball_a.bound >= 0 && ball_b.bound >= 0 && block.end - block.begin > 1) {
     // Links that are one shape or one decomposed mesh: their hulls first.
@@ -340,13 +363,13 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
         signed_distance_below(c.bounding_shape(ball_a.bound), c.shape_pose(ball_a.bound, s),
                               c.bounding_shape(ball_b.bound), c.shape_pose(ball_b.bound, s),
                               inflated, warm_start(static_cast<std::size_t>(item.index)));
-    if (const Outcome h = hull_outcome(item, r); h != Outcome::kOpen) return h;
+    if (const Outcome h = hull_outcome(item, r, lower); h != Outcome::kOpen) return h;
   }
   return test_block_pairs(kSelfPair, block.begin, block.end);
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::hull_outcome(
-    const Item& item, const SignedDistanceResult& r) {
+    const Item& item, const SignedDistanceResult& r, double lower) {
   const double inflated = margin(item.rate);
   if (r.status == Status::kAboveCutoff && r.signed_distance >= inflated) {
     return Outcome::kCertified;
@@ -357,7 +380,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::hull_out
   // possibly further apart than their hulls, decide.
   if (r.status == Status::kConverged && r.signed_distance > options.min_clearance &&
       half * item.rate > options.resolution) {
-    keep(item, r.signed_distance);
+    keep(item, std::max(r.signed_distance, lower));
     return Outcome::kPending;
   }
   return Outcome::kOpen;

@@ -1,16 +1,41 @@
-// is_valid_batch's tables of self blocks moved by at most two configuration values: a grid over
-// those values, each cell marked when the block's two links are proven apart over all of it.
+// Distance tables of self blocks: for two links moved relative to each other by at most
+// kMaxGridValues revolute values, a grid over those values holding, per cell C, bounds on the
+// links' signed distance d(q) (the smallest over the block's shape pairs) at every q in C:
 //
-// The proof for a cell: the links' converged distance at the cell's centre (their bounding hulls'
-// when both have one, which is at most any of their pieces' distances; otherwise the smallest over
-// the block's pairs) minus how far their points can move relative to each other within the
-// cell (half the cell's width per value times the block's lever arm for that value,
-// motion_bounds.cpp) exceeds kApartSlack. Out of the grid's range (values beyond the limits),
-// nothing is proven.
+//   lower(C) = min over pairs p of  d_p(c) - reach_p,    upper(C) = min over pairs p of
+//   d_p(c) + reach_p,   reach_p = sum_v lever_{p,v} w_v
+//
+// with c the cell's centre, w_v half the cell's width along keying value v and lever_{p,v}
+// how far any point of one shape of p moves relative to the other per unit of v (the pair's
+// lever arms, motion_bounds.cpp). Why: along the straight joint-space motion from c to q in C,
+// pair p's signed distance changes by at most sum_v lever_{p,v} |q_v - c_v| <= reach_p (only
+// the keying values move one link relative to the other; the other values move both rigidly).
+// A value of a continuous joint is taken modulo one turn (the same pose). Per pair the bounds
+// use the pair's own levers: pieces near the joints that move them barely move, so a block of
+// links always close at their joint (a decomposed upper arm over its base) is still proven
+// apart by the pieces that matter.
+//
+// Measuring a cell: d_p(c) is a converged signed distance, or a proven bound of
+// signed_distance_below (kAboveCutoff: only in lower), or the pair's ball gap when its query
+// did neither (only in lower); lower is capped at the table's cap; the bounding hulls'
+// distance minus the block's largest reach bounds every pair from below. Half-widths are
+// enlarged by a millionth, so that a point on a cell's boundary (or a rounding error away from
+// it) is inside. Both bounds are stored as floats rounded outwards, packed in one atomic word:
+// a cell is measured by the first query that needs it, on whichever thread, always to the same
+// value (it depends only on the cell), so racing measurements store the same word.
+//
+// The tables depend on the model's shapes and kinematics only: one set per model and padding
+// revision, shared by all its checkers (a registry of weak references), with a budget of cells
+// per model. Checkers of other allowed-collision matrices or scenes share the link pairs they
+// have in common.
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstring>
 #include <hullcheck/core/queries.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
 #include <limits>
+#include <map>
 #include <mutex>
 
 #include "collision_checker_internals.hpp"
@@ -18,81 +43,274 @@
 namespace hullcheck {
 namespace {
 
-constexpr int kCellsOneValue = 256;
-constexpr int kCellsTwoValues = 48;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Cells per keying value, by the number of keying values: half a cell's width is about 6 mrad,
+// 49 mrad and 98 mrad of a 2 pi range.
+constexpr int kCellsPerValue[] = {1, 1024, 256, 40};  // for 0 .. kMaxGridValues values
+// Cells a model's tables may hold together (8 bytes each, allocated when a table is set up).
+constexpr std::size_t kCellBudget = std::size_t{1} << 22;
 // Blocks without bounding hulls are measured pair by pair: not for blocks with more pairs.
-constexpr int kMaxPairsWithoutHulls = 16;
-// Metres a cell's proven gap must exceed: far above the queries' tolerance, so that
-// is_valid's exact tests cannot call the links touching where the table says apart.
-constexpr double kApartSlack = 1e-6;
+constexpr int kMaxPairsWithoutHulls = 64;
+// Lower bounds are measured up to this many times a cell's largest reach (and at least
+// kMinCap): larger values decide no more in the cell, and the exact queries stop sooner.
+constexpr double kCapPerReach = 4.0;
+constexpr double kMinCap = 0.05;
+// Half-widths are enlarged by this fraction (points on, or rounding errors off, a boundary).
+constexpr double kWidthSlack = 1e-6;
+
+float round_down(double x) {
+  auto f = static_cast<float>(x);
+  if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+
+float round_up(double x) {
+  auto f = static_cast<float>(x);
+  if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+std::uint64_t pack(double lower, double upper) {
+  if (std::isnan(lower)) lower = -kInfinity;
+  if (std::isnan(upper)) upper = kInfinity;
+  const float lo = round_down(lower), up = round_up(upper);
+  std::uint32_t a = 0, b = 0;
+  std::memcpy(&a, &lo, sizeof a);
+  std::memcpy(&b, &up, sizeof b);
+  return (std::uint64_t{a} << 32) | b;
+}
+
+void unpack(std::uint64_t word, double* lower, double* upper) {
+  const auto a = static_cast<std::uint32_t>(word >> 32);
+  const auto b = static_cast<std::uint32_t>(word);
+  float lo = 0.0f, up = 0.0f;
+  std::memcpy(&lo, &a, sizeof lo);
+  std::memcpy(&up, &b, sizeof up);
+  *lower = lo;
+  *upper = up;
+}
 
 }  // namespace
 
-const CollisionChecker::FreeCells& CollisionChecker::free_cells() const {
-  std::call_once(free_cells_->built, [this] { build_free_cells(*free_cells_); });
-  return *free_cells_;
+const std::vector<CollisionChecker::SelfTable*>& CollisionChecker::self_block_tables() const {
+  std::call_once(self_tables_->built, [this] { set_up_self_tables(*self_tables_); });
+  return self_tables_->per_block;
 }
 
-void CollisionChecker::build_free_cells(FreeCells& out) const {
-  const RobotModel& model = *model_;
-  const MotionLevers& levers = motion_levers();
-  out.tables.assign(self_blocks_.size(), FreeCells::Table{});
-  Eigen::VectorXd q = model.default_configuration();
-  std::vector<Eigen::Isometry3d> poses(model.links().size());
-  const auto pose_of = [&](int shape) {
-    const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
-    return Eigen::Isometry3d(poses[static_cast<std::size_t>(rs.link)] *
-                             model.link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].origin);
+void CollisionChecker::set_up_self_tables(SelfTables& out) const {
+  // The tables of one model at one padding revision, keyed by link pair.
+  struct ModelTables {
+    std::shared_ptr<const RobotModel> model;
+    int padding_revision = 0;
+    std::mutex mutex;
+    std::map<std::pair<int, int>, std::unique_ptr<SelfTable>> tables;
+    std::size_t cells = 0;
   };
+  static_assert(sizeof(kCellsPerValue) / sizeof(kCellsPerValue[0]) == kMaxGridValues + 1);
+  static std::mutex registry_mutex;
+  static std::vector<std::weak_ptr<ModelTables>> registry;
+  std::shared_ptr<ModelTables> shared;
+  {
+    const std::lock_guard<std::mutex> lock(registry_mutex);
+    for (auto it = registry.begin(); it != registry.end();) {
+      std::shared_ptr<ModelTables> entry = it->lock();
+      if (!entry) {
+        it = registry.erase(it);
+        continue;
+      }
+      if (entry->model == model_ && entry->padding_revision == padding_revision_) shared = entry;
+      ++it;
+    }
+    if (!shared) {
+      shared = std::make_shared<ModelTables>();
+      shared->model = model_;
+      shared->padding_revision = padding_revision_;
+      registry.push_back(shared);
+    }
+  }
+  out.owner = shared;
+  out.per_block.assign(self_blocks_.size(), nullptr);
+  const MotionLevers& levers = motion_levers();
+  const std::lock_guard<std::mutex> lock(shared->mutex);
   for (std::size_t k = 0; k < self_blocks_.size(); ++k) {
     const SelfBlock& block = self_blocks_[k];
     const LinkBall& ball_a = link_balls_[static_cast<std::size_t>(block.link_a)];
     const LinkBall& ball_b = link_balls_[static_cast<std::size_t>(block.link_b)];
     const bool hulls = ball_a.bound >= 0 && ball_b.bound >= 0;
     if (!hulls && block.end - block.begin > kMaxPairsWithoutHulls) continue;
-    int keys[2];
-    const int key_count = relative_drivers(ball_a.link, ball_b.link, 2, keys);
-    if (key_count > 2) continue;
-    FreeCells::Table& table = out.tables[k];
-    const std::size_t total =
-        table.setup(model, keys, key_count, key_count == 1 ? kCellsOneValue : kCellsTwoValues);
-    double reach = 0.0;  // how far the links' points move relative to each other in a cell
-    for (int d = 0; d < key_count; ++d) {
-      reach += table.half_width(d) *
-               levers.self_block_levers(static_cast<Eigen::Index>(k), table.variables[d]);
-    }
-    table.apart.assign(total, 0);
-    const Eigen::VectorXd q_default = q;
-    for (std::size_t cell = 0; cell < total; ++cell) {
-      table.center(cell, q);
-      model.compute_link_poses(q, poses);
-      // Only converged distances prove anything; any other answer leaves the cell unproven.
-      const auto proven = [](const SignedDistanceResult& r) {
-        return r.status == Status::kConverged ? r.signed_distance
-                                              : -std::numeric_limits<double>::infinity();
-      };
-      double distance = std::numeric_limits<double>::infinity();
-      if (hulls) {
-        distance = proven(signed_distance(bounding_shape(ball_a.bound), pose_of(ball_a.bound),
-                                          bounding_shape(ball_b.bound), pose_of(ball_b.bound)));
-      } else {
-        for (int p = block.begin; p < block.end; ++p) {
-          const SelfPair& pair = self_pairs_[static_cast<std::size_t>(p)];
-          distance = std::min(distance, proven(signed_distance(shape_of(pair.a), pose_of(pair.a),
-                                                               shape_of(pair.b), pose_of(pair.b))));
-        }
+    std::unique_ptr<SelfTable>& table = shared->tables[{ball_a.link, ball_b.link}];
+    if (!table) {
+      int keys[kMaxGridValues];
+      bool revolute = true;
+      const int key_count =
+          relative_drivers(ball_a.link, ball_b.link, kMaxGridValues, keys, &revolute);
+      if (key_count > kMaxGridValues || !revolute) continue;
+      auto made = std::make_unique<SelfTable>();
+      const std::size_t total = made->setup(*model_, keys, key_count, kCellsPerValue[key_count]);
+      if (shared->cells + total > kCellBudget) continue;
+      double reach = 0.0;  // the block's largest relative motion within a cell
+      for (int d = 0; d < key_count; ++d) {
+        reach += made->half_width(d) *
+                 levers.self_block_levers(static_cast<Eigen::Index>(k), made->variables[d]);
       }
-      table.apart[cell] = distance - reach > kApartSlack ? 1 : 0;
+      made->cap = std::max(kMinCap, kCapPerReach * reach);
+      made->bounds = std::make_unique<std::atomic<std::uint64_t>[]>(total);
+      for (std::size_t c = 0; c < total; ++c) {
+        made->bounds[c].store(SelfTable::kUnmeasured, std::memory_order_relaxed);
+      }
+      shared->cells += total;
+      table = std::move(made);
     }
-    q = q_default;
+    out.per_block[k] = table.get();
   }
 }
 
-bool CollisionChecker::self_block_free(const FreeCells& cells, int block, const double* q) const {
-  const FreeCells::Table& table = cells.tables[static_cast<std::size_t>(block)];
-  if (table.dims < 0) return false;
-  const long cell = table.cell(q, false);  // outside the grid (beyond a limit): nothing proven
-  return cell >= 0 && table.apart[static_cast<std::size_t>(cell)] != 0;
+bool CollisionChecker::self_block_bounds(int block, const double* q, Scratch& s, double* lower,
+                                         double* upper) const {
+  const SelfTable* table = self_block_tables()[static_cast<std::size_t>(block)];
+  if (table == nullptr) return false;
+  const long cell = table->cell(q, false);
+  if (cell < 0) return false;
+  unpack(self_table_cell(*table, block, cell, s), lower, upper);
+  return true;
+}
+
+bool CollisionChecker::self_block_segment_lower(int block, const double* q0, const double* dq,
+                                                double t0, double t1, int max_cells, double needed,
+                                                Scratch& s, double* lower) const {
+  const SelfTable* table = self_block_tables()[static_cast<std::size_t>(block)];
+  if (table == nullptr) return false;
+  // Cell coordinates u_d(t) = (x_d(t) - lower_d) * cells_per_unit_d along the motion, walked
+  // from t0 to t1 one cell boundary at a time (the dimension whose next boundary comes first).
+  int index[kMaxGridValues] = {0, 0, 0};
+  double next[kMaxGridValues];  // t of the next boundary per dimension
+  double step[kMaxGridValues];  // t between boundaries
+  int dir[kMaxGridValues];
+  for (int d = 0; d < table->dims; ++d) {
+    const int v = table->variables[d];
+    next[d] = std::numeric_limits<double>::infinity();
+    step[d] = 0.0;
+    dir[d] = 0;
+    if (table->cells_per_unit[d] == 0.0) {  // a value without range: it must stay at it
+      if (dq[v] != 0.0 || q0[v] != table->lower[d]) return false;
+      continue;
+    }
+    double x0 = q0[v] + t0 * dq[v];
+    const double x1 = q0[v] + t1 * dq[v];
+    if (table->wraps[d]) {
+      const double shift = 2.0 * M_PI * std::floor((x0 - table->lower[d]) / (2.0 * M_PI));
+      x0 -= shift;
+    } else {
+      const double hi = table->lower[d] + table->cells[d] / table->cells_per_unit[d];
+      if (!(x0 >= table->lower[d] && x0 <= hi && x1 >= table->lower[d] && x1 <= hi)) return false;
+    }
+    const double u = (x0 - table->lower[d]) * table->cells_per_unit[d];
+    index[d] = std::min(static_cast<int>(u), table->cells[d] - 1);
+    const double du = dq[v] * table->cells_per_unit[d];  // per unit t
+    if (du > 0.0) {
+      dir[d] = 1;
+      step[d] = 1.0 / du;
+      next[d] = t0 + (index[d] + 1 - u) * step[d];
+    } else if (du < 0.0) {
+      dir[d] = -1;
+      step[d] = -1.0 / du;
+      next[d] = t0 + (u - index[d]) * step[d];
+    }
+  }
+  double best = std::numeric_limits<double>::infinity();
+  for (int visited = 0; visited < max_cells; ++visited) {
+    long cell = 0;
+    for (int d = 0; d < table->dims; ++d) cell = cell * table->cells[d] + index[d];
+    double lo = 0.0, up = 0.0;
+    unpack(self_table_cell(*table, block, cell, s), &lo, &up);
+    best = std::min(best, lo);
+    if (!(best > needed)) return false;
+    int d_next = -1;
+    for (int d = 0; d < table->dims; ++d) {
+      if (dir[d] != 0 && (d_next < 0 || next[d] < next[d_next])) d_next = d;
+    }
+    if (d_next < 0 || next[d_next] >= t1) {
+      *lower = best;
+      return true;
+    }
+    int& i = index[d_next];
+    i += dir[d_next];
+    if (table->wraps[d_next]) {
+      i = (i + table->cells[d_next]) % table->cells[d_next];
+    } else {
+      i = std::clamp(i, 0, table->cells[d_next] - 1);  // only at the grid's edge, by rounding
+    }
+    next[d_next] += step[d_next];
+  }
+  return false;
+}
+
+std::uint64_t CollisionChecker::self_table_cell(const SelfTable& table, int block, long cell,
+                                                Scratch& s) const {
+  std::atomic<std::uint64_t>& slot = table.bounds[static_cast<std::size_t>(cell)];
+  const std::uint64_t word = slot.load(std::memory_order_relaxed);
+  if (word != SelfTable::kUnmeasured) return word;
+  // Per-thread scratch: sized on first use only.
+  if (s.table_q.size() != model_->variable_count()) s.table_q = model_->default_configuration();
+  if (s.table_poses.size() != model_->links().size()) s.table_poses.resize(model_->links().size());
+  table.center(static_cast<std::size_t>(cell), s.table_q);
+  model_->compute_link_poses_unchecked(s.table_q.data(), s.table_poses.data());
+  const std::vector<Eigen::Isometry3d>& poses = s.table_poses;
+  const MotionLevers& levers = motion_levers();
+  const SelfBlock& b = self_blocks_[static_cast<std::size_t>(block)];
+  // reach of a row of lever arms (per configuration value) within the cell.
+  const auto reach_of = [&](const auto& lever_row) {
+    double r = 0.0;
+    for (int d = 0; d < table.dims; ++d) r += table.half_width(d) * lever_row(table.variables[d]);
+    return (1.0 + kWidthSlack) * r;
+  };
+  const auto pose_of = [&](int shape) {
+    const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
+    const Eigen::Isometry3d& link_pose = poses[static_cast<std::size_t>(rs.link)];
+    return rs.at_link_frame
+               ? link_pose
+               : Eigen::Isometry3d(
+                     link_pose *
+                     model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].origin);
+  };
+  double lo = table.cap, up = kInfinity;
+  double floor = -kInfinity;  // from the bounding hulls: no pair is nearer
+  const int bound_a = link_balls_[static_cast<std::size_t>(b.link_a)].bound;
+  const int bound_b = link_balls_[static_cast<std::size_t>(b.link_b)].bound;
+  if (bound_a >= 0 && bound_b >= 0 && b.end - b.begin > 1) {
+    const double reach = reach_of(levers.self_block_levers.row(block));
+    const SignedDistanceResult r =
+        signed_distance_below(bounding_shape(bound_a), pose_of(bound_a), bounding_shape(bound_b),
+                              pose_of(bound_b), table.cap + reach);
+    if (r.status == Status::kAboveCutoff || r.status == Status::kConverged) {
+      floor = r.signed_distance - reach;
+    }
+  }
+  if (!(floor >= table.cap)) {
+    for (int p = b.begin; p < b.end; ++p) {
+      const SelfPair& pair = self_pairs_[static_cast<std::size_t>(p)];
+      const RobotShape& ra = shapes_[static_cast<std::size_t>(pair.a)];
+      const RobotShape& rb = shapes_[static_cast<std::size_t>(pair.b)];
+      const double reach = reach_of(levers.self_pair_levers.row(p));
+      const double gap = (poses[static_cast<std::size_t>(ra.link)] * ra.center -
+                          poses[static_cast<std::size_t>(rb.link)] * rb.center)
+                             .norm() -
+                         ra.radius - rb.radius;
+      if (gap - reach >= lo) continue;
+      const SignedDistanceResult r = signed_distance_below(
+          shape_of(pair.a), pose_of(pair.a), shape_of(pair.b), pose_of(pair.b), lo + reach);
+      if (r.status == Status::kAboveCutoff) continue;  // at least lo everywhere in the cell
+      if (r.status == Status::kConverged) {
+        lo = std::min(lo, r.signed_distance - reach);
+        up = std::min(up, r.signed_distance + reach);
+      } else {
+        lo = std::min(lo, gap - reach);  // nothing proven by the query: the balls' gap bounds it
+      }
+    }
+  }
+  const std::uint64_t measured = pack(std::max(lo, floor), up);
+  slot.store(measured, std::memory_order_relaxed);
+  return measured;
 }
 
 }  // namespace hullcheck

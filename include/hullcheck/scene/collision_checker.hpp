@@ -137,6 +137,7 @@ class CollisionChecker {
                                  const MotionCheckOptions& options = {}) const;
 
  private:
+  friend struct SelfTableTestAccess;  // tests/scene/test_self_tables.cpp: the tables' bounds
   struct RobotShape {
     int link;
     int shape;
@@ -198,21 +199,25 @@ class CollisionChecker {
   // taken along the cell's direction (near the best separating direction, so near the answer).
   // clearance and safe_advance use them; is_valid does not (its boolean GJK exits after a few
   // iterations on these pairs, and starting it from the grid's direction measured slower).
-  // Cells over at most two configuration values (joint_grid.cpp): each value's range between
-  // its limits (one turn for a continuous joint) cut into equal cells.
+  // Cells over at most kMaxGridValues configuration values (joint_grid.cpp): each value's range
+  // between its limits (one turn for a continuous joint) cut into equal cells.
+  static constexpr int kMaxGridValues = 3;
   struct JointGrid {
     int dims = -1;  // number of keying values; -1: no grid
-    int variables[2] = {0, 0};
-    double lower[2] = {0, 0};
-    double cells_per_unit[2] = {0, 0};  // cells per radian (or metre)
-    int cells[2] = {1, 1};
-    bool wraps[2] = {false, false};  // continuous joint: the grid covers one turn
+    int variables[kMaxGridValues] = {0, 0, 0};
+    double lower[kMaxGridValues] = {0, 0, 0};
+    double cells_per_unit[kMaxGridValues] = {0, 0, 0};  // cells per radian (or metre)
+    int cells[kMaxGridValues] = {1, 1, 1};
+    bool wraps[kMaxGridValues] = {false, false, false};  // continuous: the grid covers one turn
     /// Over the values keys[0 .. count), `cells_per_value` cells each; returns the cell count.
     std::size_t setup(const RobotModel& model, const int* keys, int count, int cells_per_value);
     /// Half a cell's width along value d (0 for a value without range).
     double half_width(int d) const;
     /// The cell holding configuration q: clamped into the grid, or -1 outside it unless clamp.
     long cell(const double* q, bool clamp) const;
+    /// The cell holding q, clamped into the grid, with offsets[d] = |q's value d minus the
+    /// cell centre's| (a continuous joint's value taken modulo one turn first).
+    long locate(const double* q, double* offsets) const;
     /// Writes the centre of `cell` into q's keying values.
     void center(std::size_t cell, Eigen::VectorXd& q) const;
   };
@@ -245,8 +250,10 @@ class CollisionChecker {
   void build_motion_levers(MotionLevers& out) const;
   /// The configuration values driving the movable joints above exactly one of the two links
   /// (those moving one relative to the other), written to keys[0..]; returns their count, or
-  /// at_most + 1 as soon as there are more than at_most.
-  int relative_drivers(int link_a, int link_b, int at_most, int* keys) const;
+  /// at_most + 1 as soon as there are more than at_most. *revolute, when given, tells whether
+  /// every movable joint found is revolute or continuous.
+  int relative_drivers(int link_a, int link_b, int at_most, int* keys,
+                       bool* revolute = nullptr) const;
 
   struct Scratch;
   Scratch& scratch() const;
@@ -254,6 +261,8 @@ class CollisionChecker {
   // overlap at the placed shapes?
   bool environment_block_overlaps(const EnvironmentBlock& block, Scratch& s) const;
   bool self_block_overlaps(const SelfBlock& block, Scratch& s) const;
+  /// is_valid at the shapes placed in s (with s.q, when set, for the self blocks' tables).
+  bool placed_is_valid(Scratch& s) const;
   // The same, out of line, for check_motion (motion_certificate.cpp).
   bool environment_block_collides(int block, Scratch& s) const;
   /// The covering spheres of robot shapes [begin, end) at the block's poses, placed on first
@@ -319,15 +328,32 @@ class CollisionChecker {
   // shapes x configuration values, too large for long chains that never need them); shared by
   // copies (they depend only on what copies share).
   std::shared_ptr<MotionLevers> motion_levers_;
-  // is_valid_batch: per self block moved by at most two configuration values, a grid over them
-  // marking the cells over which the two links are proven apart (self_block_tables.cpp);
-  // built by the first is_valid_batch call, shared by copies.
-  struct FreeCells;
-  std::shared_ptr<FreeCells> free_cells_;
-  const FreeCells& free_cells() const;
-  void build_free_cells(FreeCells& out) const;
-  /// True when self block `block`'s table proves its links apart at configuration q.
-  bool self_block_free(const FreeCells& cells, int block, const double* q) const;
+  // Distance tables of self blocks (self_block_tables.cpp): for a block whose links are moved
+  // relative to each other by at most kMaxGridValues revolute values, a grid over those values
+  // holding, per cell, bounds on the links' signed distance everywhere in the cell, measured
+  // when a query first needs them. They depend only on the model (and its padding): shared by
+  // every checker of the same model. Set up on first use; copies share them.
+  struct SelfTable;
+  struct SelfTables;
+  std::shared_ptr<SelfTables> self_tables_;
+  /// Per self block, its table or nullptr.
+  const std::vector<SelfTable*>& self_block_tables() const;
+  void set_up_self_tables(SelfTables& out) const;
+  /// Bounds, m, on self block `block`'s signed distance at configuration q (all values):
+  /// *lower <= distance <= *upper, those of the cell holding q. False, leaving the bounds
+  /// untouched, when the block has no table or q lies outside its grid. Measures the cell on
+  /// its first use (exact queries at its centre, with s's table scratch; the query placed in s
+  /// is left as it is).
+  bool self_block_bounds(int block, const double* q, Scratch& s, double* lower,
+                         double* upper) const;
+  /// A lower bound, m, on self block `block`'s signed distance over the straight motion
+  /// q0 + t dq, t in [t0, t1]: the smallest lower bound of the cells it crosses. False when the
+  /// block has no table, the motion leaves the grid, crosses more than `max_cells` cells, or
+  /// the bound falls to `needed` or below (then the bound is not written).
+  bool self_block_segment_lower(int block, const double* q0, const double* dq, double t0, double t1,
+                                int max_cells, double needed, Scratch& s, double* lower) const;
+  /// The packed bounds of `table`'s cell `cell` (self block `block`), measured if need be.
+  std::uint64_t self_table_cell(const SelfTable& table, int block, long cell, Scratch& s) const;
   std::vector<WarmStartGrid> warm_grids_;  // per self pair
 };
 

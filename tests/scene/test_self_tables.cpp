@@ -1,0 +1,296 @@
+// The self blocks' distance tables (src/scene/self_block_tables.cpp) against brute force: at
+// configurations anywhere in a cell (its corners included) the links' smallest signed distance
+// over every shape pair, by signed_distance, lies within the cell's bounds; along a motion the
+// distance never falls below the bound of the cells the motion crosses. And the verdicts the
+// tables decide are those of the exact tests alone (is_valid against is_valid_at, which uses
+// no table), on random and near-contact states. The own arm always; the MotionBenchMaker Panda
+// and UR5 (decomposed meshes) when ../shared is present.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <hullcheck/core/queries.hpp>
+#include <hullcheck/robot.hpp>
+#include <hullcheck/scene/collision_checker.hpp>
+#include <limits>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "collision_checker_internals.hpp"
+#include "robot_test_support.hpp"
+#include "scene_test_support.hpp"
+
+namespace hullcheck {
+
+// The checker's private tables, for this test only (a friend of CollisionChecker).
+struct SelfTableTestAccess {
+  static int blocks(const CollisionChecker& c) { return static_cast<int>(c.self_blocks_.size()); }
+  static const CollisionChecker::JointGrid* grid(const CollisionChecker& c, int block) {
+    return c.self_block_tables()[static_cast<std::size_t>(block)];
+  }
+  static std::pair<int, int> links(const CollisionChecker& c, int block) {
+    const auto& b = c.self_blocks_[static_cast<std::size_t>(block)];
+    return {c.link_balls_[static_cast<std::size_t>(b.link_a)].link,
+            c.link_balls_[static_cast<std::size_t>(b.link_b)].link};
+  }
+  static bool bounds(const CollisionChecker& c, int block, const Eigen::VectorXd& q, double* lower,
+                     double* upper) {
+    return c.self_block_bounds(block, q.data(), c.scratch(), lower, upper);
+  }
+  static bool segment(const CollisionChecker& c, int block, const Eigen::VectorXd& q0,
+                      const Eigen::VectorXd& dq, double* lower) {
+    return c.self_block_segment_lower(block, q0.data(), dq.data(), 0.0, 1.0, 1 << 20,
+                                      -std::numeric_limits<double>::infinity(), c.scratch(), lower);
+  }
+};
+
+namespace {
+
+constexpr double kTol = 1e-9;
+
+// The smallest signed distance between any shape of link a and any shape of link b.
+double brute_force(const RobotModel& model, int a, int b, const Eigen::VectorXd& q) {
+  std::vector<Eigen::Isometry3d> poses;
+  model.compute_link_poses(q, poses);
+  double d = std::numeric_limits<double>::infinity();
+  for (const CollisionShape& sa : model.link(a).shapes) {
+    for (const CollisionShape& sb : model.link(b).shapes) {
+      d = std::min(d, signed_distance(sa.shape, poses[static_cast<std::size_t>(a)] * sa.origin,
+                                      sb.shape, poses[static_cast<std::size_t>(b)] * sb.origin)
+                          .signed_distance);
+    }
+  }
+  return d;
+}
+
+struct Counts {
+  int blocks_with_tables = 0;
+  long points = 0, decided_apart = 0, decided_overlap = 0, segments = 0;
+};
+
+// Random points of random cells of every table, corners included, and random motions.
+void check_bounds(const CollisionChecker& checker, int cells_per_block, Counts* counts) {
+  const RobotModel& model = checker.model();
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int k = 0; k < SelfTableTestAccess::blocks(checker); ++k) {
+    const auto* grid = SelfTableTestAccess::grid(checker, k);
+    if (grid == nullptr) continue;
+    ++counts->blocks_with_tables;
+    const auto [a, b] = SelfTableTestAccess::links(checker, k);
+    SCOPED_TRACE(model.link(a).name + " / " + model.link(b).name);
+    for (int n = 0; n < cells_per_block; ++n) {
+      Eigen::VectorXd q = test::random_configuration(model, rng);
+      // A point of q's cell: its centre, a corner, or anywhere (the other values as drawn).
+      Eigen::VectorXd centre = q;
+      grid->center(static_cast<std::size_t>(grid->cell(q.data(), true)), centre);
+      for (int d = 0; d < grid->dims; ++d) {
+        const int v = grid->variables[d];
+        const double w = grid->half_width(d);
+        q[v] = n % 3 == 0   ? centre[v]
+               : n % 3 == 1 ? centre[v] + (unit(rng) < 0 ? -w : w) * (1.0 - 1e-12)
+                            : centre[v] + unit(rng) * w;
+      }
+      double lower = 0.0, upper = 0.0;
+      if (!SelfTableTestAccess::bounds(checker, k, q, &lower, &upper)) continue;
+      const double d = brute_force(model, a, b, q);
+      ++counts->points;
+      counts->decided_apart += lower > kTableSlack;
+      counts->decided_overlap += upper < -kTableSlack;
+      ASSERT_LE(lower, d + kTol) << "q = " << q.transpose();
+      ASSERT_GE(upper, d - kTol) << "q = " << q.transpose();
+      // A motion from q, up to a few cells long along each keying value.
+      Eigen::VectorXd dq = Eigen::VectorXd::Zero(q.size());
+      for (int d2 = 0; d2 < grid->dims; ++d2) {
+        dq[grid->variables[d2]] = 8.0 * grid->half_width(d2) * unit(rng);
+      }
+      double segment_lower = 0.0;
+      if (!SelfTableTestAccess::segment(checker, k, q, dq, &segment_lower)) continue;
+      ++counts->segments;
+      for (int i = 0; i <= 40; ++i) {
+        const Eigen::VectorXd qi = q + (i / 40.0) * dq;
+        ASSERT_LE(segment_lower, brute_force(model, a, b, qi) + kTol)
+            << "q0 = " << q.transpose() << ", dq = " << dq.transpose() << ", t = " << i / 40.0;
+      }
+    }
+  }
+}
+
+// is_valid (tables) against is_valid_at (exact tests only) on random states and on both ends
+// of a bisection to contact.
+void check_verdicts(const CollisionChecker& checker, int states) {
+  const RobotModel& model = checker.model();
+  std::mt19937_64 rng(9);
+  std::vector<Eigen::Isometry3d> poses;
+  std::vector<Eigen::VectorXd> qs;
+  for (int n = 0; n < states; ++n) qs.push_back(test::random_configuration(model, rng));
+  for (int n = 0; n + 1 < states && static_cast<int>(qs.size()) < 2 * states; n += 2) {
+    const Eigen::VectorXd a = qs[static_cast<std::size_t>(n)];
+    const Eigen::VectorXd b = qs[static_cast<std::size_t>(n + 1)];
+    model.compute_link_poses(a, poses);
+    const bool va = checker.is_valid_at(poses);
+    model.compute_link_poses(b, poses);
+    if (va == checker.is_valid_at(poses)) continue;
+    double lo = 0.0, hi = 1.0;
+    for (int i = 0; i < 40; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      model.compute_link_poses(Eigen::VectorXd(a + mid * (b - a)), poses);
+      (checker.is_valid_at(poses) == va ? lo : hi) = mid;
+    }
+    qs.push_back(a + lo * (b - a));
+    qs.push_back(a + hi * (b - a));
+  }
+  int valid = 0;
+  for (const Eigen::VectorXd& q : qs) {
+    model.compute_link_poses(q, poses);
+    const bool exact = checker.is_valid_at(poses);
+    ASSERT_EQ(checker.is_valid(q), exact) << "q = " << q.transpose();
+    valid += exact;
+  }
+  EXPECT_GT(valid, 0);
+  EXPECT_LT(valid, static_cast<int>(qs.size()));
+}
+
+void report(const std::string& id, const Counts& c) {
+  std::printf(
+      "[ %-8s ] %d blocks with tables: %ld points within their cell's bounds (%ld proven apart, "
+      "%ld proven overlapping), %ld motions above their cells' bound\n",
+      id.c_str(), c.blocks_with_tables, c.points, c.decided_apart, c.decided_overlap, c.segments);
+}
+
+// A tiny ball on a 1 m arm swung about z towards a tiny ball fixed 2 cm ahead of it: near
+// q = 0 the gap closes at nearly the lever arm's rate (1 m/rad), so a cell's bounds are tight
+// at its ends (a reach too small by a tenth shows).
+const char* const kPendulum = R"(<robot name="pendulum">
+  <link name="base"><collision><origin xyz="1 0.02 0"/>
+    <geometry><sphere radius="0.001"/></geometry></collision></link>
+  <link name="arm"><collision><origin xyz="1 0 0"/>
+    <geometry><sphere radius="0.001"/></geometry></collision></link>
+  <joint name="swing" type="revolute">
+    <parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="-3.14159" upper="3.14159" effort="1" velocity="1"/>
+  </joint>
+</robot>)";
+
+TEST(SelfTables, PendulumBoundsAreTightAndHold) {
+  const auto model = std::make_shared<const RobotModel>(
+      RobotModel::from_urdf_string(kPendulum, ".", {}, "pendulum.urdf"));
+  const CollisionChecker checker(model, AllowedCollisionMatrix(2));
+  ASSERT_EQ(SelfTableTestAccess::blocks(checker), 1);
+  const auto* grid = SelfTableTestAccess::grid(checker, 0);
+  ASSERT_NE(grid, nullptr);
+  const double w = grid->half_width(0);
+  const auto gap = [](double q) {
+    return std::hypot(std::cos(q) - 1.0, std::sin(q) - 0.02) - 0.002;
+  };
+  double tightest = std::numeric_limits<double>::infinity();
+  for (int n = -200; n <= 200; ++n) {
+    const double q = n * 0.37 * w;
+    double lower = 0.0, upper = 0.0;
+    ASSERT_TRUE(
+        SelfTableTestAccess::bounds(checker, 0, Eigen::VectorXd::Constant(1, q), &lower, &upper));
+    ASSERT_LE(lower, gap(q) + kTol) << q;
+    ASSERT_GE(upper, gap(q) - kTol) << q;
+    // The cell's bounds against the gap at its ends: within a tenth of its reach (1 m/rad
+    // times the half-width; the lever arm is 1.001 m).
+    Eigen::VectorXd centre = Eigen::VectorXd::Constant(1, q);
+    grid->center(static_cast<std::size_t>(grid->cell(centre.data(), true)), centre);
+    if (std::abs(centre[0]) < 0.008) {
+      tightest = std::min(tightest, gap(centre[0] + w) - lower);
+      EXPECT_LT(upper - gap(centre[0] - w), 0.1 * w) << q;
+    }
+  }
+  EXPECT_LT(tightest, 0.1 * w);
+  // Motions both ways over a few cells: the gap shrinks with q, so the nearest point is an end
+  // (a walk that missed the end's cell would claim more than the gap there).
+  std::mt19937_64 rng(2);
+  std::uniform_real_distribution<double> where(-0.008, 0.008);
+  for (int n = 0; n < 400; ++n) {
+    const double a = where(rng), b = where(rng);
+    double lower = 0.0;
+    ASSERT_TRUE(SelfTableTestAccess::segment(checker, 0, Eigen::VectorXd::Constant(1, a),
+                                             Eigen::VectorXd::Constant(1, b - a), &lower));
+    const double nearest = gap(std::max(a, b));
+    ASSERT_LE(lower, nearest + kTol) << a << " -> " << b;
+    EXPECT_GT(lower, nearest - 2.2 * w) << a << " -> " << b;
+  }
+}
+
+TEST(SelfTables, OwnArmBoundsHoldAgainstBruteForce) {
+  const test::RobotFile arm = test::own_arm();
+  const auto model = test::cached_model(arm.urdf);
+  const CollisionChecker checker(model, AllowedCollisionMatrix::from_adjacency(*model));
+  Counts counts;
+  check_bounds(checker, test::sample_count(300), &counts);
+  report("own arm", counts);
+  EXPECT_GT(counts.blocks_with_tables, 0);
+  EXPECT_GT(counts.decided_apart, 0);
+  EXPECT_GT(counts.segments, 0);
+}
+
+TEST(SelfTables, MbmRobotsBoundsHoldAgainstBruteForce) {
+  const auto robots = test::mbm_robots();
+  if (robots.empty()) GTEST_SKIP() << "MotionBenchMaker robots absent";
+  for (const test::MbmRobot& robot : robots) {
+    const auto model = test::cached_model(robot.urdf);
+    const CollisionChecker checker(
+        model, AllowedCollisionMatrix::from_srdf(*model, read_srdf_file(robot.srdf)));
+    Counts counts;
+    // The UR5's decomposed links make the brute force slow: fewer points per block.
+    check_bounds(checker, test::sample_count(robot.id == "ur5" ? 40 : 200), &counts);
+    report(robot.id, counts);
+    EXPECT_GT(counts.blocks_with_tables, 0);
+    EXPECT_GT(counts.decided_apart, 0);
+  }
+}
+
+TEST(SelfTables, VerdictsEqualTheExactTests) {
+  const test::RobotFile arm = test::own_arm();
+  const auto arm_model = test::cached_model(arm.urdf);
+  check_verdicts(CollisionChecker(arm_model, AllowedCollisionMatrix::from_adjacency(*arm_model)),
+                 test::sample_count(4000));
+  for (const test::MbmRobot& robot : test::mbm_robots()) {
+    SCOPED_TRACE(robot.id);
+    const auto model = test::cached_model(robot.urdf);
+    check_verdicts(CollisionChecker(model, AllowedCollisionMatrix::from_srdf(
+                                               *model, read_srdf_file(robot.srdf))),
+                   test::sample_count(robot.id == "ur5" ? 2000 : 4000));
+  }
+}
+
+TEST(SelfTables, SharedByCheckersOfOneModel) {
+  // A second checker of the same model (another scene) reads the cells the first measured:
+  // same bounds, and no table for a model whose padding changed (its shapes are others).
+  const test::RobotFile arm = test::own_arm();
+  auto model = std::make_shared<RobotModel>(RobotModel::from_urdf_file(arm.urdf));
+  const AllowedCollisionMatrix matrix = AllowedCollisionMatrix::from_adjacency(*model);
+  const CollisionChecker first(model, matrix);
+  const CollisionChecker second(model, matrix);
+  std::mt19937_64 rng(3);
+  int compared = 0;
+  for (int n = 0; n < 50; ++n) {
+    const Eigen::VectorXd q = test::random_configuration(*model, rng);
+    for (int k = 0; k < SelfTableTestAccess::blocks(first); ++k) {
+      double l1 = 0, u1 = 0, l2 = 0, u2 = 0;
+      if (!SelfTableTestAccess::bounds(first, k, q, &l1, &u1)) continue;
+      ASSERT_TRUE(SelfTableTestAccess::bounds(second, k, q, &l2, &u2));
+      EXPECT_EQ(l1, l2);
+      EXPECT_EQ(u1, u2);
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 0);
+  EXPECT_EQ(SelfTableTestAccess::grid(first, 0), SelfTableTestAccess::grid(second, 0));
+  model->set_default_padding(0.02);
+  const CollisionChecker padded(model, matrix);
+  for (int k = 0; k < SelfTableTestAccess::blocks(padded); ++k) {
+    if (SelfTableTestAccess::grid(padded, k) != nullptr) {
+      EXPECT_NE(SelfTableTestAccess::grid(padded, k), SelfTableTestAccess::grid(first, k));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hullcheck
