@@ -72,6 +72,7 @@ struct CollisionChecker::Scratch {
   // Self-block tables: the configuration and link poses at the centre of a cell being measured.
   Eigen::VectorXd table_q;
   std::vector<Eigen::Isometry3d> table_poses;
+  std::vector<Eigen::Vector3d> table_centers;  // per robot shape: its ball's centre there
   std::vector<MotionInterval> motion_intervals, motion_intervals_next;
   Eigen::VectorXd motion_q;   // the configuration being evaluated
   Eigen::VectorXd motion_dq;  // q1 - q0 (abs_dq holds its magnitudes)
@@ -95,7 +96,10 @@ constexpr double kTableSlack = 1e-6;
 
 struct CollisionChecker::SelfTable : JointGrid {
   static constexpr std::uint64_t kUnmeasured = ~std::uint64_t{0};
-  double cap = 0.0;                                      // lower bounds are measured up to this, m
+  // How far the links move relative to each other between a cell's centre and any point of
+  // it, m: per pair of the block (in its order), and at most over the block.
+  std::vector<double> pair_reach;
+  double block_reach = 0.0;
   std::unique_ptr<std::atomic<std::uint64_t>[]> bounds;  // per cell
 };
 

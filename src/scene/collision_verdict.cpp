@@ -79,7 +79,7 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, const Shape& other,
   // apart or overlapping by more than kTableSlack decide (the exact tests below would agree).
   if (s.q != nullptr) {
     double lower = 0.0, upper = 0.0;
-    if (self_block_bounds(static_cast<int>(&block - self_blocks_.data()), s.q, s, &lower, &upper)) {
+    if (self_block_bounds(static_cast<int>(&block - self_blocks_.data()), s.q, &lower, &upper)) {
       if (lower > kTableSlack) return false;
       if (upper < -kTableSlack) return true;
     }

@@ -189,7 +189,7 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
     for (int k = 0; k < count; ++k) {
       if (!(near & ~apart & ~colliding & (1u << k))) continue;
       double lower = 0.0, upper = 0.0;
-      if (self_block_bounds(static_cast<int>(b), configurations.col(first + k).data(), s, &lower,
+      if (self_block_bounds(static_cast<int>(b), configurations.col(first + k).data(), &lower,
                             &upper)) {
         if (lower > kTableSlack) continue;
         if (upper < -kTableSlack) {

@@ -279,7 +279,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::examine(
   s.motion_q = q0 + m * dq;
   c.model_->compute_link_poses_unchecked(s.motion_q.data(), s.link_poses.data());
   c.place(s.link_poses, s);
-  s.q = s.motion_q.data();  // self pairs' warm-start grids
+  s.q = s.motion_q.data();  // self pairs' warm-start grids, self blocks' tables
   for (int k = begin; k < end; ++k) {
     const Item item = in[static_cast<std::size_t>(k)];  // a copy: `in` may be *out, growing
     if (test(item) == Outcome::kContact) {
@@ -342,10 +342,10 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
   // min_clearance, prove it over the whole interval; the cell of q(m) bounds it there.
   double lower = -std::numeric_limits<double>::infinity(), upper = 0.0;
   if (c.self_block_segment_lower(item.index, q0.data(), dq.data(), centre - half, centre + half,
-                                 kMaxTableCells, options.min_clearance, s, &lower)) {
+                                 kMaxTableCells, options.min_clearance, &lower)) {
     return Outcome::kCertified;
   }
-  if (c.self_block_bounds(item.index, s.q, s, &lower, &upper)) {
+  if (c.self_block_bounds(item.index, s.q, &lower, &upper)) {
     if (lower > inflated) return Outcome::kCertified;
     if (upper <= options.min_clearance) {
       out->push_back(item);

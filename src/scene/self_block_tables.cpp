@@ -1,6 +1,6 @@
-// Distance tables of self blocks: for two links moved relative to each other by at most
-// kMaxGridValues revolute values, a grid over those values holding, per cell C, bounds on the
-// links' signed distance d(q) (the smallest over the block's shape pairs) at every q in C:
+// Distance tables of self blocks: for two links moved relative to each other by one or two
+// revolute values (kMaxTableValues), a grid over those values holding, per cell C, bounds on
+// the links' signed distance d(q) (the smallest over the block's shape pairs) at every q in C:
 //
 //   lower(C) = min over pairs p of  d_p(c) - reach_p,    upper(C) = min over pairs p of
 //   d_p(c) + reach_p,   reach_p = sum_v lever_{p,v} w_v
@@ -17,17 +17,23 @@
 //
 // Measuring a cell: d_p(c) is a converged signed distance, or a proven bound of
 // signed_distance_below (kAboveCutoff: only in lower), or the pair's ball gap when its query
-// did neither (only in lower); lower is capped at the table's cap; the bounding hulls'
-// distance minus the block's largest reach bounds every pair from below. Half-widths are
-// enlarged by a millionth, so that a point on a cell's boundary (or a rounding error away from
-// it) is inside. Both bounds are stored as floats rounded outwards, packed in one atomic word:
-// a cell is measured by the first query that needs it, on whichever thread, always to the same
-// value (it depends only on the cell), so racing measurements store the same word.
+// did neither (only in lower); lower is capped at kCap; the bounding hulls' distance minus the
+// block's largest reach bounds every pair from below. Half-widths are enlarged by a millionth,
+// so that a point on a cell's boundary (or a rounding error away from it) is inside. Both
+// bounds are stored as floats rounded outwards, packed in one atomic word. Cells are measured
+// by measure_self_tables (queries only read them: a cell not measured decides nothing), on
+// whichever thread, always to the same value (it depends only on the cell), so racing
+// measurements store the same word.
+//
+// Why not on demand: measuring a cell costs about one exact test of the block (0.3 to 17 us on
+// the MotionBenchMaker robots), and planning visits new cells faster than it revisits them;
+// measured lazily, certified RRTConnect on 33 UR5 problems took 3 to 5 times longer than
+// without tables.
 //
 // The tables depend on the model's shapes and kinematics only: one set per model and padding
-// revision, shared by all its checkers (a registry of weak references), with a budget of cells
-// per model. Checkers of other allowed-collision matrices or scenes share the link pairs they
-// have in common.
+// revision, shared by all its checkers (a registry of weak references: they live while a
+// checker of the model does), with a budget of cells per model. Checkers of other
+// allowed-collision matrices or scenes share the link pairs they have in common.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -51,10 +57,12 @@ constexpr int kCellsPerValue[] = {1, 1024, 256, 40};  // for 0 .. kMaxGridValues
 constexpr std::size_t kCellBudget = std::size_t{1} << 22;
 // Blocks without bounding hulls are measured pair by pair: not for blocks with more pairs.
 constexpr int kMaxPairsWithoutHulls = 64;
-// Lower bounds are measured up to this many times a cell's largest reach (and at least
-// kMinCap): larger values decide no more in the cell, and the exact queries stop sooner.
-constexpr double kCapPerReach = 4.0;
-constexpr double kMinCap = 0.05;
+// Lower bounds are measured up to this (m): a table decides a block when its bounds clear
+// min_clearance (1e-6 m by default) or the exact tests' slack, so larger values would decide
+// little more, while every pair within the cap plus its reach costs an exact query per cell.
+constexpr double kCap = 0.002;
+// Tables only over at most this many values (three-value grids have too many cells to measure).
+constexpr int kMaxTableValues = 2;
 // Half-widths are enlarged by this fraction (points on, or rounding errors off, a boundary).
 constexpr double kWidthSlack = 1e-6;
 
@@ -144,16 +152,24 @@ void CollisionChecker::set_up_self_tables(SelfTables& out) const {
       bool revolute = true;
       const int key_count =
           relative_drivers(ball_a.link, ball_b.link, kMaxGridValues, keys, &revolute);
-      if (key_count > kMaxGridValues || !revolute) continue;
+      if (key_count > kMaxTableValues || !revolute) continue;
       auto made = std::make_unique<SelfTable>();
       const std::size_t total = made->setup(*model_, keys, key_count, kCellsPerValue[key_count]);
       if (shared->cells + total > kCellBudget) continue;
-      double reach = 0.0;  // the block's largest relative motion within a cell
-      for (int d = 0; d < key_count; ++d) {
-        reach += made->half_width(d) *
-                 levers.self_block_levers(static_cast<Eigen::Index>(k), made->variables[d]);
+      // Per pair and for the whole block (the bounding hulls): how far the links move relative
+      // to each other between a cell's centre and any point of the cell.
+      const auto reach_of = [&](const auto& lever_row) {
+        double r = 0.0;
+        for (int d = 0; d < key_count; ++d)
+          r += made->half_width(d) * lever_row(made->variables[d]);
+        return (1.0 + kWidthSlack) * r;
+      };
+      made->block_reach = reach_of(levers.self_block_levers.row(static_cast<Eigen::Index>(k)));
+      made->pair_reach.resize(static_cast<std::size_t>(block.end - block.begin));
+      for (int p = block.begin; p < block.end; ++p) {
+        made->pair_reach[static_cast<std::size_t>(p - block.begin)] =
+            reach_of(levers.self_pair_levers.row(p));
       }
-      made->cap = std::max(kMinCap, kCapPerReach * reach);
       made->bounds = std::make_unique<std::atomic<std::uint64_t>[]>(total);
       for (std::size_t c = 0; c < total; ++c) {
         made->bounds[c].store(SelfTable::kUnmeasured, std::memory_order_relaxed);
@@ -165,19 +181,38 @@ void CollisionChecker::set_up_self_tables(SelfTables& out) const {
   }
 }
 
-bool CollisionChecker::self_block_bounds(int block, const double* q, Scratch& s, double* lower,
+void CollisionChecker::measure_self_tables() const {
+  require_current_padding();
+  Scratch& s = scratch();
+  const std::vector<SelfTable*>& tables = self_block_tables();
+  for (std::size_t k = 0; k < tables.size(); ++k) {
+    if (tables[k] == nullptr) continue;
+    std::size_t total = 1;
+    for (int d = 0; d < tables[k]->dims; ++d) {
+      total *= static_cast<std::size_t>(tables[k]->cells[d]);
+    }
+    for (std::size_t cell = 0; cell < total; ++cell) {
+      measure_self_table_cell(static_cast<int>(k), static_cast<long>(cell), s);
+    }
+  }
+}
+
+bool CollisionChecker::self_block_bounds(int block, const double* q, double* lower,
                                          double* upper) const {
   const SelfTable* table = self_block_tables()[static_cast<std::size_t>(block)];
   if (table == nullptr) return false;
   const long cell = table->cell(q, false);
   if (cell < 0) return false;
-  unpack(self_table_cell(*table, block, cell, s), lower, upper);
+  const std::uint64_t word =
+      table->bounds[static_cast<std::size_t>(cell)].load(std::memory_order_relaxed);
+  if (word == SelfTable::kUnmeasured) return false;
+  unpack(word, lower, upper);
   return true;
 }
 
 bool CollisionChecker::self_block_segment_lower(int block, const double* q0, const double* dq,
                                                 double t0, double t1, int max_cells, double needed,
-                                                Scratch& s, double* lower) const {
+                                                double* lower) const {
   const SelfTable* table = self_block_tables()[static_cast<std::size_t>(block)];
   if (table == nullptr) return false;
   // Cell coordinates u_d(t) = (x_d(t) - lower_d) * cells_per_unit_d along the motion, walked
@@ -186,6 +221,7 @@ bool CollisionChecker::self_block_segment_lower(int block, const double* q0, con
   double next[kMaxGridValues];  // t of the next boundary per dimension
   double step[kMaxGridValues];  // t between boundaries
   int dir[kMaxGridValues];
+  double crossings = 1.0;
   for (int d = 0; d < table->dims; ++d) {
     const int v = table->variables[d];
     next[d] = std::numeric_limits<double>::infinity();
@@ -207,6 +243,10 @@ bool CollisionChecker::self_block_segment_lower(int block, const double* q0, con
     const double u = (x0 - table->lower[d]) * table->cells_per_unit[d];
     index[d] = std::min(static_cast<int>(u), table->cells[d] - 1);
     const double du = dq[v] * table->cells_per_unit[d];  // per unit t
+    // The cells crossed are at most one plus the boundaries crossed in each dimension: too
+    // many, and nothing is measured.
+    crossings += std::abs(du) * (t1 - t0) + 1.0;
+    if (crossings > max_cells) return false;
     if (du > 0.0) {
       dir[d] = 1;
       step[d] = 1.0 / du;
@@ -221,8 +261,11 @@ bool CollisionChecker::self_block_segment_lower(int block, const double* q0, con
   for (int visited = 0; visited < max_cells; ++visited) {
     long cell = 0;
     for (int d = 0; d < table->dims; ++d) cell = cell * table->cells[d] + index[d];
+    const std::uint64_t word =
+        table->bounds[static_cast<std::size_t>(cell)].load(std::memory_order_relaxed);
+    if (word == SelfTable::kUnmeasured) return false;
     double lo = 0.0, up = 0.0;
-    unpack(self_table_cell(*table, block, cell, s), &lo, &up);
+    unpack(word, &lo, &up);
     best = std::min(best, lo);
     if (!(best > needed)) return false;
     int d_next = -1;
@@ -245,25 +288,18 @@ bool CollisionChecker::self_block_segment_lower(int block, const double* q0, con
   return false;
 }
 
-std::uint64_t CollisionChecker::self_table_cell(const SelfTable& table, int block, long cell,
-                                                Scratch& s) const {
+void CollisionChecker::measure_self_table_cell(int block, long cell, Scratch& s) const {
+  const SelfTable& table = *self_block_tables()[static_cast<std::size_t>(block)];
   std::atomic<std::uint64_t>& slot = table.bounds[static_cast<std::size_t>(cell)];
-  const std::uint64_t word = slot.load(std::memory_order_relaxed);
-  if (word != SelfTable::kUnmeasured) return word;
+  if (slot.load(std::memory_order_relaxed) != SelfTable::kUnmeasured) return;
   // Per-thread scratch: sized on first use only.
   if (s.table_q.size() != model_->variable_count()) s.table_q = model_->default_configuration();
   if (s.table_poses.size() != model_->links().size()) s.table_poses.resize(model_->links().size());
+  if (s.table_centers.size() < shapes_.size()) s.table_centers.resize(shapes_.size());
   table.center(static_cast<std::size_t>(cell), s.table_q);
   model_->compute_link_poses_unchecked(s.table_q.data(), s.table_poses.data());
   const std::vector<Eigen::Isometry3d>& poses = s.table_poses;
-  const MotionLevers& levers = motion_levers();
   const SelfBlock& b = self_blocks_[static_cast<std::size_t>(block)];
-  // reach of a row of lever arms (per configuration value) within the cell.
-  const auto reach_of = [&](const auto& lever_row) {
-    double r = 0.0;
-    for (int d = 0; d < table.dims; ++d) r += table.half_width(d) * lever_row(table.variables[d]);
-    return (1.0 + kWidthSlack) * r;
-  };
   const auto pose_of = [&](int shape) {
     const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
     const Eigen::Isometry3d& link_pose = poses[static_cast<std::size_t>(rs.link)];
@@ -273,29 +309,39 @@ std::uint64_t CollisionChecker::self_table_cell(const SelfTable& table, int bloc
                      link_pose *
                      model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].origin);
   };
-  double lo = table.cap, up = kInfinity;
+  double lo = kCap, up = kInfinity;
   double floor = -kInfinity;  // from the bounding hulls: no pair is nearer
   const int bound_a = link_balls_[static_cast<std::size_t>(b.link_a)].bound;
   const int bound_b = link_balls_[static_cast<std::size_t>(b.link_b)].bound;
   if (bound_a >= 0 && bound_b >= 0 && b.end - b.begin > 1) {
-    const double reach = reach_of(levers.self_block_levers.row(block));
+    const double reach = table.block_reach;
     const SignedDistanceResult r =
         signed_distance_below(bounding_shape(bound_a), pose_of(bound_a), bounding_shape(bound_b),
-                              pose_of(bound_b), table.cap + reach);
+                              pose_of(bound_b), kCap + reach);
     if (r.status == Status::kAboveCutoff || r.status == Status::kConverged) {
       floor = r.signed_distance - reach;
     }
   }
-  if (!(floor >= table.cap)) {
+  if (!(floor >= kCap)) {
+    // The ball centres of the two links' shapes, once (a decomposed link's pieces are in many
+    // pairs).
+    const int la = link_balls_[static_cast<std::size_t>(b.link_a)].link;
+    const int lb = link_balls_[static_cast<std::size_t>(b.link_b)].link;
+    for (const int l : {la, lb}) {
+      for (int sh = shape_begin_[static_cast<std::size_t>(l)];
+           sh < shape_begin_[static_cast<std::size_t>(l) + 1]; ++sh) {
+        s.table_centers[static_cast<std::size_t>(sh)] =
+            poses[static_cast<std::size_t>(l)] * shapes_[static_cast<std::size_t>(sh)].center;
+      }
+    }
     for (int p = b.begin; p < b.end; ++p) {
       const SelfPair& pair = self_pairs_[static_cast<std::size_t>(p)];
-      const RobotShape& ra = shapes_[static_cast<std::size_t>(pair.a)];
-      const RobotShape& rb = shapes_[static_cast<std::size_t>(pair.b)];
-      const double reach = reach_of(levers.self_pair_levers.row(p));
-      const double gap = (poses[static_cast<std::size_t>(ra.link)] * ra.center -
-                          poses[static_cast<std::size_t>(rb.link)] * rb.center)
+      const double reach = table.pair_reach[static_cast<std::size_t>(p - b.begin)];
+      const double gap = (s.table_centers[static_cast<std::size_t>(pair.a)] -
+                          s.table_centers[static_cast<std::size_t>(pair.b)])
                              .norm() -
-                         ra.radius - rb.radius;
+                         shapes_[static_cast<std::size_t>(pair.a)].radius -
+                         shapes_[static_cast<std::size_t>(pair.b)].radius;
       if (gap - reach >= lo) continue;
       const SignedDistanceResult r = signed_distance_below(
           shape_of(pair.a), pose_of(pair.a), shape_of(pair.b), pose_of(pair.b), lo + reach);
@@ -308,9 +354,7 @@ std::uint64_t CollisionChecker::self_table_cell(const SelfTable& table, int bloc
       }
     }
   }
-  const std::uint64_t measured = pack(std::max(lo, floor), up);
-  slot.store(measured, std::memory_order_relaxed);
-  return measured;
+  slot.store(pack(std::max(lo, floor), up), std::memory_order_relaxed);
 }
 
 }  // namespace hullcheck

@@ -152,10 +152,14 @@ struct DenseStats {
   double worst_contact_distance = -1.0;  // FCL's distance at the reported contacts
 };
 
-void dense_fcl_check(const test::MbmRobot& robot, int total_motions) {
+// With `tables`, the self blocks' distance tables are measured first (and kept while
+// `self_checker` lives): check_motion then certifies those blocks by walking their cells.
+void dense_fcl_check(const test::MbmRobot& robot, int total_motions, bool tables = false) {
   const auto model = test::cached_model(robot.urdf);
   const Srdf srdf = read_srdf_file(robot.srdf);
   const AllowedCollisionMatrix matrix = AllowedCollisionMatrix::from_srdf(*model, srdf);
+  const CollisionChecker self_checker(model, matrix);
+  if (tables) self_checker.measure_self_tables();
   const MotionCheckOptions options;
   MotionCheckOptions first_found;
   first_found.locate_contact = false;
@@ -258,6 +262,20 @@ TEST(MotionCheckFcl, PandaMotionsAgreeWithDenseFcl) {
 TEST(MotionCheckFcl, Ur5MotionsAgreeWithDenseFcl) {
   for (const test::MbmRobot& robot : test::mbm_robots()) {
     if (robot.id == "ur5") return dense_fcl_check(robot, 200);
+  }
+  GTEST_SKIP() << "MotionBenchMaker UR5 absent";
+}
+
+TEST(MotionCheckFcl, WithSelfTablesPandaMotionsAgreeWithDenseFcl) {
+  for (const test::MbmRobot& robot : test::mbm_robots()) {
+    if (robot.id == "panda") return dense_fcl_check(robot, 1000, true);
+  }
+  GTEST_SKIP() << "MotionBenchMaker Panda absent";
+}
+
+TEST(MotionCheckFcl, WithSelfTablesUr5MotionsAgreeWithDenseFcl) {
+  for (const test::MbmRobot& robot : test::mbm_robots()) {
+    if (robot.id == "ur5") return dense_fcl_check(robot, 200, true);
   }
   GTEST_SKIP() << "MotionBenchMaker UR5 absent";
 }
