@@ -17,9 +17,7 @@ GuaranteedMotionValidator::GuaranteedMotionValidator(
 
 bool GuaranteedMotionValidator::advance(const ob::State* s1, const ob::State* s2,
                                         double* last_free) const {
-  // Without a place to report the last valid state, the first contact found settles it.
   MotionCheckOptions options = options_;
-  options.locate_contact = last_free != nullptr;
   const JointStateSpace& joints = validity_->joint_space();
   const CollisionChecker& checker = validity_->collision_checker();
   // Per-thread scratch: sized once, reused (no allocation per motion).
@@ -35,10 +33,25 @@ bool GuaranteedMotionValidator::advance(const ob::State* s1, const ob::State* s2
       q1[v] = q0[v] + std::remainder(q1[v] - q0[v], 2.0 * M_PI);
     }
   }
+  // The verdict comes from the yes/no search (level order, the first contact found settles it)
+  // whichever overload asks: the two searches examine different intervals, and within
+  // `resolution` of contact one may prove a motion free that the other calls near contact, so
+  // a path accepted through checkMotion(s1, s2) would be rejected when re-checked with a last
+  // valid state.
+  options.locate_contact = false;
   const MotionCheckResult r = checker.check_motion(q0, q1, options);
   steps_.fetch_add(static_cast<unsigned long>(r.states), std::memory_order_relaxed);
-  if (last_free != nullptr) *last_free = r.last_free;
-  return r.free();
+  if (r.free() || last_free == nullptr) {
+    if (last_free != nullptr) *last_free = r.last_free;
+    return r.free();
+  }
+  // Rejected: the depth-first search places the last valid state (before the first contact;
+  // 0 when it proves the motion free after all, inside that band).
+  options.locate_contact = true;
+  const MotionCheckResult located = checker.check_motion(q0, q1, options);
+  steps_.fetch_add(static_cast<unsigned long>(located.states), std::memory_order_relaxed);
+  *last_free = located.free() ? 0.0 : located.last_free;
+  return false;
 }
 
 bool GuaranteedMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {

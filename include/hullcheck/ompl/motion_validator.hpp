@@ -22,7 +22,9 @@ namespace hullcheck {
 /// within min_clearance + `options.resolution` (default 1e-4 m), and is after
 /// `options.max_states` configurations without a decision (never reported as success). On
 /// rejection the last valid fraction is the end of the proven-free part, before the contact
-/// found, with no pair moving more than `resolution` between the two. Thread-safe; OMPL's own
+/// found, with no pair moving more than `resolution` between the two. Both overloads give the
+/// same verdict for the same motion (the yes/no search decides; the overload with a last valid
+/// state then locates the contact). Thread-safe; OMPL's own
 /// valid/invalid counters (plain integers, racy under parallel planners) are left at zero, the
 /// counts are in valid_motion_count() / invalid_motion_count() (atomic).
 class GuaranteedMotionValidator : public ::ompl::base::MotionValidator {
@@ -45,8 +47,8 @@ class GuaranteedMotionValidator : public ::ompl::base::MotionValidator {
 
  private:
   /// Checks s1 -> s2: true when the whole motion is certified free; `last_free` (when not null:
-  /// the first contact is then located, see MotionCheckOptions::locate_contact) receives the
-  /// fraction of the motion in [0, 1] certified free from s1 (1 when free).
+  /// on rejection the first contact is then located, see MotionCheckOptions::locate_contact)
+  /// receives the fraction of the motion in [0, 1] certified free from s1 (1 when free).
   bool advance(const ::ompl::base::State* s1, const ::ompl::base::State* s2,
                double* last_free) const;
 
