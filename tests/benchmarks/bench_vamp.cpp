@@ -9,7 +9,7 @@
 // Solve times are the best of --repeats attempts per problem (same seed each); medians over the
 // problems valid for both checkers.
 //
-//   bench_vamp --robot panda|ur5 --problems DIR [--per-family N] [--time S] [--repeats K]
+//   bench_vamp --robot panda|ur5 --mbm DIR [--per-family N] [--time S] [--repeats K] [--no-tables]
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/StateValidityChecker.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
@@ -147,6 +147,9 @@ int main(int argc, char** argv) {
   app.add_option("--per-family", per_family, "problems per family");
   app.add_option("--time", time_limit, "solve time limit, s");
   app.add_option("--repeats", repeats, "attempts per problem and planner (best kept)");
+  bool no_tables = false;
+  app.add_flag("--no-tables", no_tables,
+               "do not measure the self-collision tables (CollisionChecker::measure_self_tables)");
   CLI11_PARSE(app, argc, argv);
   // Re-seeding OMPL per attempt makes it log that sampling already started: silenced.
   ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
@@ -162,7 +165,7 @@ int main(int argc, char** argv) {
   // this one lives.
   const CollisionChecker self_checker(model, matrix);
   const auto measure_start = std::chrono::steady_clock::now();
-  self_checker.measure_self_tables();
+  if (!no_tables) self_checker.measure_self_tables();
   std::printf(
       "self tables measured in %.2f s\n",
       std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count());
