@@ -114,6 +114,7 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
   }
   motion_levers_ = std::make_shared<MotionLevers>();
   self_tables_ = std::make_shared<SelfTables>();
+  self_tables_->model = model_self_tables();
   build_warm_start_grids();
 }
 

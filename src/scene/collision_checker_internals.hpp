@@ -96,6 +96,7 @@ constexpr double kTableSlack = 1e-6;
 
 struct CollisionChecker::SelfTable : JointGrid {
   static constexpr std::uint64_t kUnmeasured = ~std::uint64_t{0};
+  std::size_t cell_count = 0;
   // How far the links move relative to each other between a cell's centre and any point of
   // it, m: per pair of the block (in its order), and at most over the block.
   std::vector<double> pair_reach;
@@ -103,10 +104,21 @@ struct CollisionChecker::SelfTable : JointGrid {
   std::unique_ptr<std::atomic<std::uint64_t>[]> bounds;  // per cell
 };
 
-// The tables of one checker's self blocks, from the model's shared set (self_block_tables.cpp).
+// The tables of one model at one padding revision, keyed by link pair, shared by its
+// checkers through a registry (self_block_tables.cpp).
+struct CollisionChecker::ModelSelfTables {
+  std::shared_ptr<const RobotModel> model;
+  int padding_revision = 0;
+  std::atomic<bool> any_measured{false};  // some cell of `tables` is measured
+  std::mutex mutex;                       // guards tables and cells
+  std::map<std::pair<int, int>, std::unique_ptr<SelfTable>> tables;
+  std::size_t cells = 0;
+};
+
+// The tables of one checker's self blocks, from the model's shared set.
 struct CollisionChecker::SelfTables {
+  std::shared_ptr<ModelSelfTables> model;  // found at construction
   std::once_flag built;
-  std::shared_ptr<void> owner;        // keeps the model's shared tables alive
   std::vector<SelfTable*> per_block;  // per self block: its table, or nullptr
 };
 

@@ -42,9 +42,8 @@ double CollisionChecker::JointGrid::half_width(int d) const {
 long CollisionChecker::JointGrid::cell(const double* q, bool clamp) const {
   long cell = 0;
   for (int d = 0; d < dims; ++d) {
-    double x = q[variables[d]];
-    if (wraps[d]) x = wrapped(x, lower[d]);
-    const double t = (x - lower[d]) * cells_per_unit[d];
+    const double x = q[variables[d]];
+    const double t = coordinate(d, x);
     int i = 0;
     if (cells_per_unit[d] > 0.0) {
       if (!(t >= 0.0 && t < cells[d])) {
@@ -61,22 +60,9 @@ long CollisionChecker::JointGrid::cell(const double* q, bool clamp) const {
   return cell;
 }
 
-long CollisionChecker::JointGrid::locate(const double* q, double* offsets) const {
-  long cell = 0;
-  for (int d = 0; d < dims; ++d) {
-    double x = q[variables[d]];
-    if (wraps[d]) x = wrapped(x, lower[d]);
-    int i = 0;
-    double centre = lower[d];
-    if (cells_per_unit[d] > 0.0) {
-      const double t = (x - lower[d]) * cells_per_unit[d];
-      i = t >= 0.0 && t < cells[d] ? static_cast<int>(t) : (t >= cells[d] ? cells[d] - 1 : 0);
-      centre = lower[d] + (i + 0.5) / cells_per_unit[d];
-    }
-    offsets[d] = std::abs(x - centre);
-    cell = cell * cells[d] + i;
-  }
-  return cell;
+double CollisionChecker::JointGrid::coordinate(int d, double x) const {
+  if (wraps[d]) x = wrapped(x, lower[d]);
+  return (x - lower[d]) * cells_per_unit[d];
 }
 
 void CollisionChecker::JointGrid::center(std::size_t cell, Eigen::VectorXd& q) const {

@@ -41,7 +41,6 @@
 #include <hullcheck/core/queries.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
 #include <limits>
-#include <map>
 #include <mutex>
 
 #include "collision_checker_internals.hpp"
@@ -100,98 +99,93 @@ void unpack(std::uint64_t word, double* lower, double* upper) {
 
 }  // namespace
 
-const std::vector<CollisionChecker::SelfTable*>& CollisionChecker::self_block_tables() const {
-  std::call_once(self_tables_->built, [this] { set_up_self_tables(*self_tables_); });
-  return self_tables_->per_block;
+std::shared_ptr<CollisionChecker::ModelSelfTables> CollisionChecker::model_self_tables() const {
+  static std::mutex registry_mutex;
+  static std::vector<std::weak_ptr<ModelSelfTables>> registry;
+  const std::lock_guard<std::mutex> lock(registry_mutex);
+  std::shared_ptr<ModelSelfTables> found;
+  for (auto it = registry.begin(); it != registry.end();) {
+    std::shared_ptr<ModelSelfTables> entry = it->lock();
+    if (!entry) {
+      it = registry.erase(it);
+      continue;
+    }
+    if (entry->model == model_ && entry->padding_revision == padding_revision_) found = entry;
+    ++it;
+  }
+  if (!found) {
+    found = std::make_shared<ModelSelfTables>();
+    found->model = model_;
+    found->padding_revision = padding_revision_;
+    registry.push_back(found);
+  }
+  return found;
 }
 
-void CollisionChecker::set_up_self_tables(SelfTables& out) const {
-  // The tables of one model at one padding revision, keyed by link pair.
-  struct ModelTables {
-    std::shared_ptr<const RobotModel> model;
-    int padding_revision = 0;
-    std::mutex mutex;
-    std::map<std::pair<int, int>, std::unique_ptr<SelfTable>> tables;
-    std::size_t cells = 0;
-  };
+const std::vector<CollisionChecker::SelfTable*>* CollisionChecker::self_block_tables() const {
+  if (!self_tables_->model->any_measured.load(std::memory_order_acquire)) return nullptr;
+  return &set_up_self_tables();
+}
+
+const std::vector<CollisionChecker::SelfTable*>& CollisionChecker::set_up_self_tables() const {
   static_assert(sizeof(kCellsPerValue) / sizeof(kCellsPerValue[0]) == kMaxGridValues + 1);
-  static std::mutex registry_mutex;
-  static std::vector<std::weak_ptr<ModelTables>> registry;
-  std::shared_ptr<ModelTables> shared;
-  {
-    const std::lock_guard<std::mutex> lock(registry_mutex);
-    for (auto it = registry.begin(); it != registry.end();) {
-      std::shared_ptr<ModelTables> entry = it->lock();
-      if (!entry) {
-        it = registry.erase(it);
-        continue;
+  SelfTables& out = *self_tables_;
+  std::call_once(out.built, [&] {
+    ModelSelfTables& shared = *out.model;
+    out.per_block.assign(self_blocks_.size(), nullptr);
+    const MotionLevers& levers = motion_levers();
+    const std::lock_guard<std::mutex> lock(shared.mutex);
+    for (std::size_t k = 0; k < self_blocks_.size(); ++k) {
+      const SelfBlock& block = self_blocks_[k];
+      const LinkBall& ball_a = link_balls_[static_cast<std::size_t>(block.link_a)];
+      const LinkBall& ball_b = link_balls_[static_cast<std::size_t>(block.link_b)];
+      const bool hulls = ball_a.bound >= 0 && ball_b.bound >= 0;
+      if (!hulls && block.end - block.begin > kMaxPairsWithoutHulls) continue;
+      std::unique_ptr<SelfTable>& table = shared.tables[{ball_a.link, ball_b.link}];
+      if (!table) {
+        int keys[kMaxGridValues];
+        bool revolute = true;
+        const int key_count =
+            relative_drivers(ball_a.link, ball_b.link, kMaxGridValues, keys, &revolute);
+        if (key_count > kMaxTableValues || !revolute) continue;
+        auto made = std::make_unique<SelfTable>();
+        made->cell_count = made->setup(*model_, keys, key_count, kCellsPerValue[key_count]);
+        if (shared.cells + made->cell_count > kCellBudget) continue;
+        // Per pair and for the whole block (the bounding hulls): how far the links move
+        // relative to each other between a cell's centre and any point of the cell.
+        const auto reach_of = [&](const auto& lever_row) {
+          double r = 0.0;
+          for (int d = 0; d < key_count; ++d) {
+            r += made->half_width(d) * lever_row(made->variables[d]);
+          }
+          return (1.0 + kWidthSlack) * r;
+        };
+        made->block_reach = reach_of(levers.self_block_levers.row(static_cast<Eigen::Index>(k)));
+        made->pair_reach.resize(static_cast<std::size_t>(block.end - block.begin));
+        for (int p = block.begin; p < block.end; ++p) {
+          made->pair_reach[static_cast<std::size_t>(p - block.begin)] =
+              reach_of(levers.self_pair_levers.row(p));
+        }
+        made->bounds = std::make_unique<std::atomic<std::uint64_t>[]>(made->cell_count);
+        for (std::size_t c = 0; c < made->cell_count; ++c) {
+          made->bounds[c].store(SelfTable::kUnmeasured, std::memory_order_relaxed);
+        }
+        shared.cells += made->cell_count;
+        table = std::move(made);
       }
-      if (entry->model == model_ && entry->padding_revision == padding_revision_) shared = entry;
-      ++it;
+      out.per_block[k] = table.get();
     }
-    if (!shared) {
-      shared = std::make_shared<ModelTables>();
-      shared->model = model_;
-      shared->padding_revision = padding_revision_;
-      registry.push_back(shared);
-    }
-  }
-  out.owner = shared;
-  out.per_block.assign(self_blocks_.size(), nullptr);
-  const MotionLevers& levers = motion_levers();
-  const std::lock_guard<std::mutex> lock(shared->mutex);
-  for (std::size_t k = 0; k < self_blocks_.size(); ++k) {
-    const SelfBlock& block = self_blocks_[k];
-    const LinkBall& ball_a = link_balls_[static_cast<std::size_t>(block.link_a)];
-    const LinkBall& ball_b = link_balls_[static_cast<std::size_t>(block.link_b)];
-    const bool hulls = ball_a.bound >= 0 && ball_b.bound >= 0;
-    if (!hulls && block.end - block.begin > kMaxPairsWithoutHulls) continue;
-    std::unique_ptr<SelfTable>& table = shared->tables[{ball_a.link, ball_b.link}];
-    if (!table) {
-      int keys[kMaxGridValues];
-      bool revolute = true;
-      const int key_count =
-          relative_drivers(ball_a.link, ball_b.link, kMaxGridValues, keys, &revolute);
-      if (key_count > kMaxTableValues || !revolute) continue;
-      auto made = std::make_unique<SelfTable>();
-      const std::size_t total = made->setup(*model_, keys, key_count, kCellsPerValue[key_count]);
-      if (shared->cells + total > kCellBudget) continue;
-      // Per pair and for the whole block (the bounding hulls): how far the links move relative
-      // to each other between a cell's centre and any point of the cell.
-      const auto reach_of = [&](const auto& lever_row) {
-        double r = 0.0;
-        for (int d = 0; d < key_count; ++d)
-          r += made->half_width(d) * lever_row(made->variables[d]);
-        return (1.0 + kWidthSlack) * r;
-      };
-      made->block_reach = reach_of(levers.self_block_levers.row(static_cast<Eigen::Index>(k)));
-      made->pair_reach.resize(static_cast<std::size_t>(block.end - block.begin));
-      for (int p = block.begin; p < block.end; ++p) {
-        made->pair_reach[static_cast<std::size_t>(p - block.begin)] =
-            reach_of(levers.self_pair_levers.row(p));
-      }
-      made->bounds = std::make_unique<std::atomic<std::uint64_t>[]>(total);
-      for (std::size_t c = 0; c < total; ++c) {
-        made->bounds[c].store(SelfTable::kUnmeasured, std::memory_order_relaxed);
-      }
-      shared->cells += total;
-      table = std::move(made);
-    }
-    out.per_block[k] = table.get();
-  }
+  });
+  return out.per_block;
 }
 
 void CollisionChecker::measure_self_tables() const {
   require_current_padding();
   Scratch& s = scratch();
-  const std::vector<SelfTable*>& tables = self_block_tables();
+  const std::vector<SelfTable*>& tables = set_up_self_tables();
   for (std::size_t k = 0; k < tables.size(); ++k) {
     if (tables[k] == nullptr) continue;
-    std::size_t total = 1;
-    for (int d = 0; d < tables[k]->dims; ++d) {
-      total *= static_cast<std::size_t>(tables[k]->cells[d]);
-    }
-    for (std::size_t cell = 0; cell < total; ++cell) {
+    for (std::size_t cell = 0; cell < tables[k]->cell_count; ++cell) {
       measure_self_table_cell(static_cast<int>(k), static_cast<long>(cell), s);
     }
   }
@@ -199,7 +193,8 @@ void CollisionChecker::measure_self_tables() const {
 
 bool CollisionChecker::self_block_bounds(int block, const double* q, double* lower,
                                          double* upper) const {
-  const SelfTable* table = self_block_tables()[static_cast<std::size_t>(block)];
+  const std::vector<SelfTable*>* tables = self_block_tables();
+  const SelfTable* table = tables == nullptr ? nullptr : (*tables)[static_cast<std::size_t>(block)];
   if (table == nullptr) return false;
   const long cell = table->cell(q, false);
   if (cell < 0) return false;
@@ -213,7 +208,8 @@ bool CollisionChecker::self_block_bounds(int block, const double* q, double* low
 bool CollisionChecker::self_block_segment_lower(int block, const double* q0, const double* dq,
                                                 double t0, double t1, int max_cells, double needed,
                                                 double* lower) const {
-  const SelfTable* table = self_block_tables()[static_cast<std::size_t>(block)];
+  const std::vector<SelfTable*>* tables = self_block_tables();
+  const SelfTable* table = tables == nullptr ? nullptr : (*tables)[static_cast<std::size_t>(block)];
   if (table == nullptr) return false;
   // Cell coordinates u_d(t) = (x_d(t) - lower_d) * cells_per_unit_d along the motion, walked
   // from t0 to t1 one cell boundary at a time (the dimension whose next boundary comes first).
@@ -231,16 +227,14 @@ bool CollisionChecker::self_block_segment_lower(int block, const double* q0, con
       if (dq[v] != 0.0 || q0[v] != table->lower[d]) return false;
       continue;
     }
-    double x0 = q0[v] + t0 * dq[v];
-    const double x1 = q0[v] + t1 * dq[v];
-    if (table->wraps[d]) {
-      const double shift = 2.0 * M_PI * std::floor((x0 - table->lower[d]) / (2.0 * M_PI));
-      x0 -= shift;
-    } else {
-      const double hi = table->lower[d] + table->cells[d] / table->cells_per_unit[d];
-      if (!(x0 >= table->lower[d] && x0 <= hi && x1 >= table->lower[d] && x1 <= hi)) return false;
+    // The motion's ends in cell units (a continuous value's start taken into the grid's turn);
+    // a bounded value's must both lie in the grid.
+    const double u = table->coordinate(d, q0[v] + t0 * dq[v]);
+    const double u1 = table->coordinate(d, q0[v] + t1 * dq[v]);
+    if (!table->wraps[d] &&
+        !(u >= 0.0 && u <= table->cells[d] && u1 >= 0.0 && u1 <= table->cells[d])) {
+      return false;
     }
-    const double u = (x0 - table->lower[d]) * table->cells_per_unit[d];
     index[d] = std::min(static_cast<int>(u), table->cells[d] - 1);
     const double du = dq[v] * table->cells_per_unit[d];  // per unit t
     // The cells crossed are at most one plus the boundaries crossed in each dimension: too
@@ -289,7 +283,7 @@ bool CollisionChecker::self_block_segment_lower(int block, const double* q0, con
 }
 
 void CollisionChecker::measure_self_table_cell(int block, long cell, Scratch& s) const {
-  const SelfTable& table = *self_block_tables()[static_cast<std::size_t>(block)];
+  const SelfTable& table = *set_up_self_tables()[static_cast<std::size_t>(block)];
   std::atomic<std::uint64_t>& slot = table.bounds[static_cast<std::size_t>(cell)];
   if (slot.load(std::memory_order_relaxed) != SelfTable::kUnmeasured) return;
   // Per-thread scratch: sized on first use only.
@@ -355,6 +349,8 @@ void CollisionChecker::measure_self_table_cell(int block, long cell, Scratch& s)
     }
   }
   slot.store(pack(std::max(lo, floor), up), std::memory_order_relaxed);
+  // Queries read the tables from now on (a release: the tables' set-up is visible to them).
+  self_tables_->model->any_measured.store(true, std::memory_order_release);
 }
 
 }  // namespace hullcheck

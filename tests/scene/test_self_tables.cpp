@@ -28,7 +28,7 @@ namespace hullcheck {
 struct SelfTableTestAccess {
   static int blocks(const CollisionChecker& c) { return static_cast<int>(c.self_blocks_.size()); }
   static const CollisionChecker::JointGrid* grid(const CollisionChecker& c, int block) {
-    return c.self_block_tables()[static_cast<std::size_t>(block)];
+    return c.set_up_self_tables()[static_cast<std::size_t>(block)];
   }
   static std::pair<int, int> links(const CollisionChecker& c, int block) {
     const auto& b = c.self_blocks_[static_cast<std::size_t>(block)];
@@ -37,15 +37,17 @@ struct SelfTableTestAccess {
   }
   static bool bounds(const CollisionChecker& c, int block, const Eigen::VectorXd& q, double* lower,
                      double* upper) {
-    const auto* table = c.self_block_tables()[static_cast<std::size_t>(block)];
+    const auto* table = c.set_up_self_tables()[static_cast<std::size_t>(block)];
     const long cell = table == nullptr ? -1 : table->cell(q.data(), false);
     if (cell >= 0) c.measure_self_table_cell(block, cell, c.scratch());
     return c.self_block_bounds(block, q.data(), lower, upper);
   }
+  // True once the checker's tables are set up (lever arms built, cells allocated).
+  static bool set_up(const CollisionChecker& c) { return !c.self_tables_->per_block.empty(); }
   // Measures every block's cell holding q.
   static void measure_at(const CollisionChecker& c, const Eigen::VectorXd& q) {
     for (int k = 0; k < blocks(c); ++k) {
-      const auto* table = c.self_block_tables()[static_cast<std::size_t>(k)];
+      const auto* table = c.set_up_self_tables()[static_cast<std::size_t>(k)];
       const long cell = table == nullptr ? -1 : table->cell(q.data(), false);
       if (cell >= 0) c.measure_self_table_cell(k, cell, c.scratch());
     }
@@ -54,7 +56,7 @@ struct SelfTableTestAccess {
                       const Eigen::VectorXd& dq, double* lower) {
     // Measures the cells the motion crosses (at 200 points of it, finer than the cells of the
     // motions tested), then walks them.
-    const auto* table = c.self_block_tables()[static_cast<std::size_t>(block)];
+    const auto* table = c.set_up_self_tables()[static_cast<std::size_t>(block)];
     if (table == nullptr) return false;
     for (int i = 0; i <= 200; ++i) {
       const Eigen::VectorXd q = q0 + (i / 200.0) * dq;
@@ -285,6 +287,27 @@ TEST(SelfTables, VerdictsEqualTheExactTests) {
                                                *model, read_srdf_file(robot.srdf))),
                    test::sample_count(robot.id == "ur5" ? 2000 : 4000));
   }
+}
+
+TEST(SelfTables, NothingBuiltUntilMeasured) {
+  // Queries of a model whose tables nobody measured read no table and set none up (a long
+  // chain's lever arms are large); measuring sets them up, and a checker made before reads them.
+  const test::RobotFile arm = test::own_arm();
+  const auto model = std::make_shared<const RobotModel>(RobotModel::from_urdf_file(arm.urdf));
+  const AllowedCollisionMatrix matrix = AllowedCollisionMatrix::from_adjacency(*model);
+  const CollisionChecker before(model, matrix);
+  std::mt19937_64 rng(4);
+  for (int n = 0; n < 20; ++n) {
+    const Eigen::VectorXd q = test::random_configuration(*model, rng);
+    before.is_valid(q);
+    before.check_motion(q, test::random_configuration(*model, rng));
+  }
+  EXPECT_FALSE(SelfTableTestAccess::set_up(before));
+  const CollisionChecker measuring(model, matrix);
+  measuring.measure_self_tables();
+  EXPECT_TRUE(SelfTableTestAccess::set_up(measuring));
+  before.is_valid(test::random_configuration(*model, rng));
+  EXPECT_TRUE(SelfTableTestAccess::set_up(before));
 }
 
 TEST(SelfTables, SharedByCheckersOfOneModel) {

@@ -229,9 +229,9 @@ class CollisionChecker {
     double half_width(int d) const;
     /// The cell holding configuration q: clamped into the grid, or -1 outside it unless clamp.
     long cell(const double* q, bool clamp) const;
-    /// The cell holding q, clamped into the grid, with offsets[d] = |q's value d minus the
-    /// cell centre's| (a continuous joint's value taken modulo one turn first).
-    long locate(const double* q, double* offsets) const;
+    /// Value x of keying value d in cell units from the grid's lower end (a continuous joint's
+    /// value taken modulo one turn first); 0 for a value without range.
+    double coordinate(int d, double x) const;
     /// Writes the centre of `cell` into q's keying values.
     void center(std::size_t cell, Eigen::VectorXd& q) const;
   };
@@ -343,16 +343,21 @@ class CollisionChecker {
   // copies (they depend only on what copies share).
   std::shared_ptr<MotionLevers> motion_levers_;
   // Distance tables of self blocks (self_block_tables.cpp): for a block whose links are moved
-  // relative to each other by at most kMaxGridValues revolute values, a grid over those values
-  // holding, per cell, bounds on the links' signed distance everywhere in the cell, measured
-  // when a query first needs them. They depend only on the model (and its padding): shared by
-  // every checker of the same model. Set up on first use; copies share them.
+  // relative to each other by one or two revolute values, a grid over those values holding, per
+  // cell, bounds on the links' signed distance everywhere in the cell, measured by
+  // measure_self_tables. They depend only on the model (and its padding): shared by every
+  // checker of the same model (found at construction); copies share them.
   struct SelfTable;
   struct SelfTables;
+  struct ModelSelfTables;
   std::shared_ptr<SelfTables> self_tables_;
-  /// Per self block, its table or nullptr.
-  const std::vector<SelfTable*>& self_block_tables() const;
-  void set_up_self_tables(SelfTables& out) const;
+  /// The tables of the model (and padding revision) from a registry, made when absent.
+  std::shared_ptr<ModelSelfTables> model_self_tables() const;
+  /// Per self block, its table or nullptr, set up on first use (the lever arms are built then).
+  const std::vector<SelfTable*>& set_up_self_tables() const;
+  /// set_up_self_tables() once any cell of the model's tables is measured; before, nullptr
+  /// (queries read no table, and nothing is built or allocated for them).
+  const std::vector<SelfTable*>* self_block_tables() const;
   /// Bounds, m, on self block `block`'s signed distance at configuration q (all values):
   /// *lower <= distance <= *upper, those of the cell holding q. False, leaving the bounds
   /// untouched, when the block has no table, q lies outside its grid, or the cell is not
@@ -365,7 +370,8 @@ class CollisionChecker {
   bool self_block_segment_lower(int block, const double* q0, const double* dq, double t0, double t1,
                                 int max_cells, double needed, double* lower) const;
   /// Measures cell `cell` of self block `block`'s table (exact queries at its centre, with s's
-  /// table scratch; the query placed in s is left as it is) unless it is measured.
+  /// table scratch; the query placed in s is left as it is) unless it is measured; queries of
+  /// the model's checkers read the tables from then on.
   void measure_self_table_cell(int block, long cell, Scratch& s) const;
   std::vector<WarmStartGrid> warm_grids_;  // per self pair
 };
