@@ -1,3 +1,4 @@
+#include <ompl/config.h>
 #include <ompl/geometric/PathSimplifier.h>
 
 #include <algorithm>
@@ -11,6 +12,20 @@ namespace hullcheck {
 namespace ob = ::ompl::base;
 namespace og = ::ompl::geometric;
 
+namespace {
+
+// One pass of random shortcuts that keep the objective's cost from growing. OMPL 1.7 renamed
+// PathSimplifier::shortcutPath to partialShortcutPath (same arguments and meaning).
+bool shortcut_once(og::PathSimplifier& simplifier, og::PathGeometric& path) {
+#if OMPL_VERSION_VALUE >= 1007000
+  return simplifier.partialShortcutPath(path);
+#else
+  return simplifier.shortcutPath(path);
+#endif
+}
+
+}  // namespace
+
 bool simplify_with_objective(const ob::SpaceInformationPtr& si, og::PathGeometric& path,
                              const ob::OptimizationObjectivePtr& objective, double max_time,
                              const ob::GoalPtr& goal) {
@@ -23,12 +38,12 @@ bool simplify_with_objective(const ob::SpaceInformationPtr& si, og::PathGeometri
   // OMPL 1.5.2's simplify() also runs steps that ignore the objective (reduceVertices,
   // collapseCloseVertices, B-spline smoothing, checkAndRepair): they shorten the path but may
   // take it closer to obstacles. Keep its result only when the objective's cost did not grow;
-  // otherwise use only the objective-aware steps (shortcutPath, findBetterGoal).
+  // otherwise use only the objective-aware steps (shortcuts, findBetterGoal).
   simplifier.simplify(path, ptc);
   if (objective->isCostBetterThan(cost_before, path.cost(objective))) {
     path = original;
     for (bool more = true; more;) {
-      more = simplifier.shortcutPath(path);
+      more = shortcut_once(simplifier, path);
       if (goal) more = simplifier.findBetterGoal(path, ptc) || more;
       if (ptc) break;
     }
