@@ -4,11 +4,14 @@
 # group state over the wall on the table (RRTConnect, guaranteed motion checks, objective-aware
 # simplification), then validate the path and plot its clearance profile.
 # Outputs: build/demo/path.csv (the path) and build/demo/clearance.svg (its clearance profile).
+# Also builds the Python package and installs it into the interpreter's site-packages (the
+# component `python` alone: `import hullcheck` then works from anywhere).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DHULLCHECK_BUILD_TESTS=OFF >/dev/null
-cmake --build build/release -j"$(nproc)" --target hullcheck_cli
+cmake --build build/release -j"$(nproc)" --target hullcheck_cli hullcheck_python
+cmake --install build/release --component python
 arm=robots/hullcheck_arm
 world=(--robot "$arm/urdf/hullcheck_arm.urdf" --srdf "$arm/srdf/hullcheck_arm.srdf"
   --scene "$arm/scenes/table_wall.yaml")

@@ -47,7 +47,7 @@ fi
 # times faster to compile, for its few seconds per target).
 CC=clang CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="${FUZZ_CXX_FLAGS:--O1 -g1}" -DHULLCHECK_BUILD_FUZZERS=ON \
-  -DHULLCHECK_BUILD_TESTS=OFF "${launcher[@]}" >/dev/null
+  -DHULLCHECK_BUILD_TESTS=OFF -DHULLCHECK_BUILD_PYTHON=OFF "${launcher[@]}" >/dev/null
 cmake --build "$build" -j"${FUZZ_BUILD_JOBS:-2}" --target "${targets[@]/#/fuzz_}"
 
 # Copies the files found under $1 matching the find(1) tests after it into $dest, at most

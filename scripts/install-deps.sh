@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages hullcheck needs (library, tests, benchmark peers) when missing.
 # Usage: scripts/install-deps.sh   (as root, or with sudo available)
+# ccache: a compiler cache outside the clone, used by scripts/test.sh, fuzz.sh and ompl2.sh.
 set -euo pipefail
-packages=(cmake g++ make clang-format pkg-config
+packages=(cmake g++ make clang-format pkg-config ccache
   libompl-dev libeigen3-dev liburdfdom-dev libassimp-dev libqhull-dev libyaml-cpp-dev
   libtinyxml2-dev libhwy-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   libfcl-dev libccd-dev libbullet-dev liborocos-kdl-dev libkdl-parser-dev
