@@ -6,7 +6,7 @@
 #  2. hullcheck (library, OMPL-layer tests, CLI, planning example, Python package; no
 #     benchmarks) in build/ci-ompl2 against that OMPL, then the OMPL-layer GoogleTest suite, the
 #     planning example, the CLI test (with OMPL 2's ompl_benchmark_statistics reading the
-#     benchmark logs) and the Python planning tests.
+#     benchmark logs), the Python planning tests, and a consumer of the installed package.
 # Skips cleanly (exit 0, a message) when ../shared/ompl is absent.
 # Usage: scripts/ompl2.sh [--build-only]   (--build-only: step 1 alone)
 set -euo pipefail
@@ -68,4 +68,13 @@ python="$(sed -n 's/^Python_EXECUTABLE:FILEPATH=//p' "$build/CMakeCache.txt")"
 PYTHONPATH="$build/python" HULLCHECK_PYTHON_REFERENCE="$build/tests/hullcheck_python_reference" \
   "$python" -m pytest -q -p no:cacheprovider tests/python/test_planning.py \
   tests/python/test_examples.py
+# Installed, hullcheck's package config finds the OMPL it was built with (here ompl::ompl of
+# 2.0.2, not the system's 1.5.2) for a consumer of every layer.
+install_prefix="$(mktemp -d)"
+cmake --install "$build" --prefix "$install_prefix" >/dev/null
+cmake -S tests/install_consumer -B "$build-consumer" -DCMAKE_PREFIX_PATH="$install_prefix" \
+  >/dev/null
+cmake --build "$build-consumer" -j"$jobs"
+"$build-consumer/hullcheck_consumer"
+rm -rf "$install_prefix"
 echo "ompl2.sh: hullcheck against OMPL 2.0.2 passed"

@@ -257,8 +257,12 @@ void bind_scene(py::module_& m) {
            "srdf: an SRDF path or Srdf (None: adjacent links allowed only); scene: a MoveIt "
            "scene YAML path or PlanningScene (None: no obstacles).")
       .def_property_readonly(
-          "model", [](const CollisionChecker& c) { return const_cast<RobotModel*>(&c.model()); },
-          py::return_value_policy::reference_internal)
+          "model",
+          // RobotModel is immutable from Python: sharing it without const is safe.
+          [](const CollisionChecker& c) {
+            return std::const_pointer_cast<RobotModel>(c.shared_model());
+          },
+          "The robot model (shared with the checker).")
       .def_property_readonly("scene", &CollisionChecker::scene)
       .def("is_valid", &is_valid, py::arg("q"), py::arg("threads") = 1,
            "True when no checked pair overlaps: a bool for q (dof,), a bool array (N,) for "

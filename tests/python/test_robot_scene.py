@@ -137,3 +137,12 @@ def test_scene_errors_name_the_file(arm, tmp_path):
         hc.read_planning_scene(str(bad), arm)
     with pytest.raises(hc.InputError, match="no_such_scene.yaml"):
         hc.CollisionChecker(arm, scene=str(tmp_path / "no_such_scene.yaml"))
+
+
+def test_checker_model_outlives_its_python_object(arm_files):
+    # The model object made here is dropped at once: the checker's model is still usable and can
+    # build another checker.
+    checker = hc.CollisionChecker(hc.RobotModel.from_urdf(arm_files["urdf"]))
+    model = checker.model
+    again = hc.CollisionChecker(model, scene=arm_files["scene"])
+    assert again.model.name == "hullcheck_arm" and len(again.scene.obstacles) > 0

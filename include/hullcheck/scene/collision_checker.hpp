@@ -64,6 +64,8 @@ class CollisionChecker {
                    PlanningScene scene = {});
 
   const RobotModel& model() const { return *model_; }
+  /// The model, shared: a caller can keep it as long as it needs (the Python binding does).
+  const std::shared_ptr<const RobotModel>& shared_model() const { return model_; }
   const PlanningScene& scene() const { return scene_; }
   const AllowedCollisionMatrix& matrix() const { return matrix_; }
 
