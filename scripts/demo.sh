@@ -12,6 +12,12 @@ scripts/install-deps.sh
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DHULLCHECK_BUILD_TESTS=OFF >/dev/null
 cmake --build build/release -j"$(nproc)" --target hullcheck_cli hullcheck_python
 cmake --install build/release --component python
+python="$(sed -n 's/^Python_EXECUTABLE:FILEPATH=//p' build/release/CMakeCache.txt)"
+echo "Python package installed for $python: $python -c 'import hullcheck'"
+path_python="$(python3 -c 'import sys; print(sys.executable)' 2>/dev/null || true)"
+if [ -n "$path_python" ] && [ "$(realpath "$path_python")" != "$(realpath "$python")" ]; then
+  echo "note: python3 on PATH is $path_python, not the interpreter hullcheck was built for (the first python3 with numpy): use $python"
+fi
 arm=robots/hullcheck_arm
 world=(--robot "$arm/urdf/hullcheck_arm.urdf" --srdf "$arm/srdf/hullcheck_arm.srdf"
   --scene "$arm/scenes/table_wall.yaml")

@@ -25,6 +25,33 @@ std::string escape(const std::string& text) {
   return out;
 }
 
+// Round tick values over [lo, hi]: multiples of a step of 1, 2 or 5 times a power of ten, about
+// `count` intervals of it, and the decimals that print that step exactly.
+struct Ticks {
+  double first = 0.0;  // the smallest multiple of step >= lo
+  double step = 1.0;
+  int count = 0;  // ticks first, first + step, ... up to hi
+  int decimals = 0;
+};
+
+Ticks round_ticks(double lo, double hi, int intervals) {
+  Ticks t;
+  const double raw = (hi - lo) / intervals;
+  const double power = std::pow(10.0, std::floor(std::log10(raw)));
+  const double mantissa = raw / power;  // in [1, 10)
+  t.step = (mantissa <= 1.5 ? 1.0 : mantissa <= 3.0 ? 2.0 : mantissa <= 7.0 ? 5.0 : 10.0) * power;
+  t.first = std::ceil(lo / t.step - 1e-9) * t.step;
+  t.count = static_cast<int>(std::floor((hi - t.first) / t.step + 1e-9)) + 1;
+  t.decimals = std::max(0, -static_cast<int>(std::floor(std::log10(t.step) + 1e-9)));
+  return t;
+}
+
+// Tick i of `t`, 0 exactly where the multiple is zero (no "-0.000").
+double tick(const Ticks& t, int i) {
+  const double v = t.first + i * t.step;
+  return std::abs(v) < 1e-9 * t.step ? 0.0 : v;
+}
+
 }  // namespace
 
 void write_clearance_svg(const std::string& file, const std::string& title,
@@ -62,16 +89,20 @@ void write_clearance_svg(const std::string& file, const std::string& title,
                 left, top, left, height - bottom, left, height - bottom, width - right,
                 height - bottom);
   out << buf;
-  for (int i = 0; i <= 5; ++i) {
-    const double y = y_min + (y_max - y_min) * i / 5.0;
+  const Ticks y_ticks = round_ticks(y_min, y_max, 5);
+  for (int i = 0; i < y_ticks.count; ++i) {
+    const double y = tick(y_ticks, i);
     std::snprintf(buf, sizeof buf,
-                  "<text x=\"%g\" y=\"%g\" text-anchor=\"end\">%.3g</text>\n"
+                  "<text x=\"%g\" y=\"%g\" text-anchor=\"end\">%.*f</text>\n"
                   "<line x1=\"%g\" y1=\"%g\" x2=\"%g\" y2=\"%g\" stroke=\"#ddd\"/>\n",
-                  left - 6, py(y) + 4, y, left, py(y), width - right, py(y));
+                  left - 6, py(y) + 4, y_ticks.decimals, y, left, py(y), width - right, py(y));
     out << buf;
-    const double x = x_max * i / 5.0;
-    std::snprintf(buf, sizeof buf, "<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">%.3g</text>\n",
-                  px(x), height - bottom + 18, x);
+  }
+  const Ticks x_ticks = round_ticks(0.0, x_max, 5);
+  for (int i = 0; i < x_ticks.count; ++i) {
+    const double x = tick(x_ticks, i);
+    std::snprintf(buf, sizeof buf, "<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">%.*f</text>\n",
+                  px(x), height - bottom + 18, x_ticks.decimals, x);
     out << buf;
   }
   std::snprintf(buf, sizeof buf,

@@ -34,20 +34,50 @@ std::vector<std::string> split(const std::string& line) {
   return out;
 }
 
-// Throws when the header names a joint twice (or names an empty one).
-void check_unique_names(const std::string& file, const std::vector<std::string>& names) {
+// Throws when the header names a joint twice (or names an empty one), or a held joint is named
+// twice or also in the header.
+void check_unique_names(const std::string& file, const JointPath& path) {
   std::set<std::string> seen;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (names[i].empty()) {
+  for (std::size_t i = 0; i < path.joint_names.size(); ++i) {
+    if (path.joint_names[i].empty()) {
       throw InputError("path '" + file + "': joint name " + std::to_string(i + 1) +
                        " of the header is empty");
     }
-    if (!seen.insert(names[i]).second) {
-      throw InputError("path '" + file + "': joint '" + names[i] +
+    if (!seen.insert(path.joint_names[i]).second) {
+      throw InputError("path '" + file + "': joint '" + path.joint_names[i] +
                        "' is named twice in the header");
     }
   }
+  for (const auto& [name, value] : path.held) {
+    if (!seen.insert(name).second) {
+      throw InputError("path '" + file + "': held joint '" + name +
+                       "' is named twice (among the header and the held joints)");
+    }
+  }
 }
+
+// True when `text` (trimmed) is a finite number, which is stored in *value.
+bool parse_finite(const std::string& text, double* value) {
+  char* end = nullptr;
+  *value = std::strtod(text.c_str(), &end);
+  return !text.empty() && end != text.c_str() && *end == '\0' && std::isfinite(*value);
+}
+
+// The items "name=value" of a CSV "# held:" line (after the colon).
+void parse_held(const std::string& file, int line_number, const std::string& items,
+                JointPath* path) {
+  for (const std::string& item : split(items)) {
+    const std::size_t eq = item.find('=');
+    double value = 0.0;
+    if (eq == std::string::npos || eq == 0 || !parse_finite(item.substr(eq + 1), &value)) {
+      throw InputError("path '" + file + "': line " + std::to_string(line_number) +
+                       ": held joint '" + item + "': expected NAME=VALUE with a finite value");
+    }
+    path->held.emplace_back(item.substr(0, eq), value);
+  }
+}
+
+constexpr const char* kHeldPrefix = "# held:";
 
 }  // namespace
 
@@ -58,8 +88,15 @@ void write_joint_path(const std::string& file, const JointPath& path) {
     // JSON through yaml-cpp's emitter: flow style with double-quoted keys and names is JSON.
     YAML::Emitter e;
     e.SetDoublePrecision(17);
-    e << YAML::Flow << YAML::BeginMap << YAML::Key << YAML::DoubleQuoted << "joint_names"
-      << YAML::Value << YAML::BeginSeq;
+    e << YAML::Flow << YAML::BeginMap;
+    if (!path.held.empty()) {
+      e << YAML::Key << YAML::DoubleQuoted << "held" << YAML::Value << YAML::BeginMap;
+      for (const auto& [name, value] : path.held) {
+        e << YAML::Key << YAML::DoubleQuoted << name << YAML::Value << value;
+      }
+      e << YAML::EndMap;
+    }
+    e << YAML::Key << YAML::DoubleQuoted << "joint_names" << YAML::Value << YAML::BeginSeq;
     for (const std::string& n : path.joint_names) e << YAML::DoubleQuoted << n;
     e << YAML::EndSeq << YAML::Key << YAML::DoubleQuoted << "waypoints" << YAML::Value
       << YAML::BeginSeq;
@@ -71,6 +108,13 @@ void write_joint_path(const std::string& file, const JointPath& path) {
     e << YAML::EndSeq << YAML::EndMap;
     out << e.c_str() << "\n";
   } else {
+    if (!path.held.empty()) {
+      out << kHeldPrefix << ' ';
+      for (std::size_t i = 0; i < path.held.size(); ++i) {
+        out << (i ? "," : "") << path.held[i].first << '=' << number(path.held[i].second);
+      }
+      out << "\n";
+    }
     for (std::size_t i = 0; i < path.joint_names.size(); ++i) {
       out << (i ? "," : "") << path.joint_names[i];
     }
@@ -89,6 +133,15 @@ JointPath read_joint_path(const std::string& file) {
     YAML::Node root;
     try {
       root = YAML::LoadFile(file);
+      for (const auto& entry : root["held"]) {
+        const std::string name = entry.first.as<std::string>();
+        double value = 0.0;
+        if (!parse_finite(entry.second.Scalar(), &value)) {
+          throw InputError("path '" + file + "': held joint '" + name + "': '" +
+                           entry.second.Scalar() + "' is not a finite number");
+        }
+        path.held.emplace_back(name, value);
+      }
       for (const YAML::Node& n : root["joint_names"])
         path.joint_names.push_back(n.as<std::string>());
       int row = 0;
@@ -123,6 +176,15 @@ JointPath read_joint_path(const std::string& file) {
     while (std::getline(in, line)) {
       ++line_number;
       if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      if (line.rfind(kHeldPrefix, 0) == 0) {
+        if (!path.joint_names.empty()) {
+          throw InputError("path '" + file + "': line " + std::to_string(line_number) +
+                           ": the held joints must come before the header");
+        }
+        parse_held(file, line_number, line.substr(std::string(kHeldPrefix).size()), &path);
+        continue;
+      }
+      if (line[0] == '#') continue;  // a comment
       const std::vector<std::string> items = split(line);
       if (path.joint_names.empty()) {
         path.joint_names = items;
@@ -135,9 +197,7 @@ JointPath read_joint_path(const std::string& file) {
       }
       Eigen::VectorXd q(static_cast<Eigen::Index>(items.size()));
       for (std::size_t i = 0; i < items.size(); ++i) {
-        char* end = nullptr;
-        q[static_cast<Eigen::Index>(i)] = std::strtod(items[i].c_str(), &end);
-        if (items[i].empty() || *end != '\0' || !std::isfinite(q[static_cast<Eigen::Index>(i)])) {
+        if (!parse_finite(items[i], &q[static_cast<Eigen::Index>(i)])) {
           throw InputError("path '" + file + "': line " + std::to_string(line_number) +
                            ", joint '" + path.joint_names[i] + "': '" + items[i] +
                            "' is not a finite number");
@@ -147,7 +207,7 @@ JointPath read_joint_path(const std::string& file) {
     }
   }
   if (path.joint_names.empty()) throw InputError("path '" + file + "': no joint-name header");
-  check_unique_names(file, path.joint_names);
+  check_unique_names(file, path);
   if (path.waypoints.empty()) throw InputError("path '" + file + "': no waypoints");
   return path;
 }

@@ -102,6 +102,13 @@ void run(const PlanSettings& s) {
   JointPath out;
   for (int v : variables)
     out.joint_names.push_back(world.model->joint(world.model->variable_joint(v)).name);
+  // The joints planning held fixed, at their values, so that validate checks the same states.
+  const std::vector<std::string> names = world.model->variable_names();
+  for (int v = 0; v < world.model->variable_count(); ++v) {
+    if (std::find(variables.begin(), variables.end(), v) == variables.end()) {
+      out.held.emplace_back(names[static_cast<std::size_t>(v)], start[v]);
+    }
+  }
   for (std::size_t i = 0; i < path.getStateCount(); ++i) {
     const Eigen::VectorXd q = planning.configuration(path.getState(i));
     Eigen::VectorXd row(static_cast<Eigen::Index>(variables.size()));

@@ -2,6 +2,7 @@
 
 #include <ompl/util/Console.h>
 
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -16,11 +17,44 @@ namespace {
 
 struct ValidateSettings {
   WorldOptions world;
+  std::string request;
   std::string path;
   std::string plot;
   std::string viewer;
   int samples_per_motion = 20;
 };
+
+// The values of the joints the path does not move: those the path file holds (as planning held
+// them); for the others, the request's start state with --request (as `plan --request` plans
+// from it), else the scene's robot state, else the default configuration. A held value that
+// the request's start contradicts is an error: the path was not planned for that request.
+Eigen::VectorXd held_configuration(const ValidateSettings& s, const LoadedWorld& world,
+                                   const JointPath& path) {
+  const RobotModel& model = *world.model;
+  Eigen::VectorXd base = model.default_configuration();
+  if (!s.request.empty()) {
+    base = read_motion_plan_request(s.request, model).start;
+  } else {
+    for (const auto& [name, value] : world.checker->scene().robot_joint_values) {
+      const int v = model.variable_index(name);
+      if (v >= 0) base[v] = value;
+    }
+  }
+  for (const auto& [name, value] : path.held) {
+    const int v = model.variable_index(name);
+    if (v < 0) {
+      throw InputError("path '" + s.path + "': held joint '" + name +
+                       "' is not an active joint of robot '" + model.name() + "'");
+    }
+    if (!s.request.empty() && std::abs(base[v] - value) > 1e-9) {
+      throw InputError("path '" + s.path + "' holds '" + name + "' at " + std::to_string(value) +
+                       ", request '" + s.request + "' starts it at " + std::to_string(base[v]) +
+                       ": the path was not planned for this request");
+    }
+    base[v] = value;
+  }
+  return base;
+}
 
 void run(const ValidateSettings& s) {
   ::ompl::msg::setLogLevel(::ompl::msg::LOG_WARN);
@@ -36,12 +70,7 @@ void run(const ValidateSettings& s) {
     }
     variables.push_back(v);
   }
-  // Joints the path does not name: the scene's robot state, else the default configuration.
-  Eigen::VectorXd base = model.default_configuration();
-  for (const auto& [name, value] : world.checker->scene().robot_joint_values) {
-    const int v = model.variable_index(name);
-    if (v >= 0) base[v] = value;
-  }
+  const Eigen::VectorXd base = held_configuration(s, world, path);
   const auto full = [&](const Eigen::VectorXd& row) {
     Eigen::VectorXd q = base;
     for (std::size_t k = 0; k < variables.size(); ++k)
@@ -121,6 +150,9 @@ void add_validate_command(CLI::App& app) {
   s->world.add_to(*command, true);
   command->add_option("--path", s->path, "Path file (CSV with a joint-name header, or .json)")
       ->required();
+  command->add_option("--request", s->request,
+                      "MotionPlanRequest the path was planned for: its start state gives the "
+                      "joints the path neither moves nor holds (default: the scene's robot state)");
   command->add_option("--plot", s->plot, "Write the clearance profile as an SVG plot");
   command->add_option("--viewer", s->viewer,
                       "Write a self-contained HTML page animating the path in 3D");

@@ -217,6 +217,15 @@ RobotModel RobotModel::from_urdf_string(const std::string& xml, const std::strin
   const std::string where = "URDF '" + source_name + "'";
   const UrdfGraph graph = checked_graph(xml, source_name, where);
   check_padding(where + ": default", options.default_padding);
+  // A package folder that does not exist is a mistake (a typo, a missing checkout): it would
+  // otherwise be passed over silently for the environment's folders.
+  for (const auto& [package, folder] : options.packages) {
+    std::error_code error;
+    if (!std::filesystem::is_directory(folder, error)) {
+      throw InputError(where + ": package '" + package + "' maps to '" + folder +
+                       "', which is not a folder");
+    }
+  }
   const urdf::ModelInterfaceSharedPtr urdf = parse_urdf(xml, where);
 
   RobotModel model;

@@ -76,6 +76,9 @@ expect "missing URDF" 1 "" "cannot open file" -- \
   "$bin" inspect --robot "$tmp/none.urdf"
 expect "malformed --package" 1 "" "expected NAME=DIR" -- \
   "$bin" inspect --robot "$urdf" --package nonsense
+expect "--package with a folder that does not exist" 1 "" \
+  "package 'hullcheck_arm' maps to '$tmp/no_such_folder', which is not a folder" -- \
+  "$bin" inspect --robot "$urdf" --package "hullcheck_arm=$tmp/no_such_folder"
 expect "missing SRDF" 1 "" "SRDF .*cannot open" -- \
   "$bin" inspect --robot "$urdf" --srdf "$tmp/none.srdf" --state 0,0,0,0,0,0,0,0
 printf '<robot name="x"><link name="a"></robot>' >"$tmp/bad.urdf"
@@ -95,10 +98,65 @@ world=(--robot "$urdf" --srdf "$srdf" --scene "$scene")
 expect "plan solves left -> right" 0 "solved in" "" -- \
   "$bin" plan "${world[@]}" --group arm --start left --goal right --simplify --out "$tmp/path.csv"
 expect "plan wrote a CSV path" 0 "^joint1,joint2,joint3,joint4,joint5,joint6,joint7$" "" -- \
+  sed -n 2p "$tmp/path.csv"
+expect "the path file holds the gripper at its planned value" 0 "^# held: finger_joint1=0$" "" -- \
   head -1 "$tmp/path.csv"
 expect "validate accepts the planned path" 0 "path VALID" "" -- \
   "$bin" validate "${world[@]}" --path "$tmp/path.csv" --plot "$tmp/clearance.svg"
 expect "validate wrote an SVG plot" 0 "<svg" "" -- head -1 "$tmp/clearance.svg"
+# Tick labels are round: evenly spaced by 1, 2 or 5 times a power of ten, printed with the
+# decimals of that step (not 0.0201, 0.0167, ...).
+expect "the plot's tick labels are round" 0 "^round$" "" -- python3 -c "
+import math, re, sys
+svg = open(sys.argv[1]).read()
+for anchor in ('end', 'middle'):
+    labels = re.findall(r'text-anchor=\"' + anchor + r'\">(-?[0-9.]+)</text>', svg)
+    values = [float(v) for v in labels]
+    steps = {round(b - a, 12) for a, b in zip(values, values[1:])}
+    assert len(labels) >= 3 and len(steps) == 1, (anchor, labels)
+    step = steps.pop()
+    mantissa = step / 10 ** math.floor(math.log10(step) + 1e-9)
+    assert min(abs(mantissa - m) for m in (1, 2, 5)) < 1e-9, (anchor, labels)
+    decimals = max(0, -math.floor(math.log10(step) + 1e-9))
+    assert all(len(v.split('.')[1]) == decimals if '.' in v else decimals == 0 for v in labels), labels
+print('round')" "$tmp/clearance.svg"
+
+# Joints the path neither moves nor holds: from --request's start state. The request starts
+# the gripper at 0.02 (the scene leaves it at the default, 0): the planned path holds it at 0.02
+# and validates with or without the request; a path holding another value contradicts it.
+problem=(--robot "$urdf" --srdf "$srdf" --scene "$arm/problems/table_wall/scene0001.yaml")
+request="$arm/problems/table_wall/request0001.yaml"
+expect "plan --request holds the request's gripper value" 0 "solved in" "" -- \
+  "$bin" plan "${problem[@]}" --request "$request" --out "$tmp/request_path.csv"
+expect "... written in the path file" 0 "^# held: finger_joint1=0.02$" "" -- \
+  head -1 "$tmp/request_path.csv"
+expect "validate uses the held value" 0 "path VALID" "" -- \
+  "$bin" validate "${problem[@]}" --path "$tmp/request_path.csv"
+expect "validate --request agrees with it" 0 "path VALID" "" -- \
+  "$bin" validate "${problem[@]}" --request "$request" --path "$tmp/request_path.csv"
+sed '1s/.*/# held: finger_joint1=0.01/' "$tmp/request_path.csv" >"$tmp/other_held.csv"
+expect "validate --request: a held value the request contradicts" 1 "" \
+  "holds 'finger_joint1' at 0.010000, request '.*request0001.yaml' starts it at 0.020000" -- \
+  "$bin" validate "${problem[@]}" --request "$request" --path "$tmp/other_held.csv"
+tail -n +2 "$tmp/request_path.csv" >"$tmp/group_only.csv"
+expect "validate --request fills the joints a path file does not hold" 0 "path VALID" "" -- \
+  "$bin" validate "${problem[@]}" --request "$request" --path "$tmp/group_only.csv"
+sed '1s/.*/# held: no_such_joint=0/' "$tmp/request_path.csv" >"$tmp/bad_held.csv"
+expect "validate: a held joint the robot lacks" 1 "" \
+  "held joint 'no_such_joint' is not an active joint of robot 'hullcheck_arm'" -- \
+  "$bin" validate "${problem[@]}" --path "$tmp/bad_held.csv"
+sed '1s/.*/# held: finger_joint1=open/' "$tmp/request_path.csv" >"$tmp/bad_value.csv"
+expect "validate: a held value that is not a number" 1 "" \
+  "line 1: held joint 'finger_joint1=open': expected NAME=VALUE" -- \
+  "$bin" validate "${problem[@]}" --path "$tmp/bad_value.csv"
+sed '1s/.*/# held: joint1=0/' "$tmp/request_path.csv" >"$tmp/held_twice.csv"
+expect "validate: a held joint also in the header" 1 "" "held joint 'joint1' is named twice" -- \
+  "$bin" validate "${problem[@]}" --path "$tmp/held_twice.csv"
+expect "plan --out .json holds the gripper too" 0 '"held": \{"finger_joint1": 0.02' "" -- bash -c \
+  "'$bin' plan ${problem[*]} --request '$request' --out '$tmp/request_path.json' >/dev/null &&
+   cat '$tmp/request_path.json'"
+expect "validate reads the JSON path's held joints" 0 "path VALID" "" -- \
+  "$bin" validate "${problem[@]}" --request "$request" --path "$tmp/request_path.json"
 expect "plan writes the HTML viewer" 0 "viewer written to" "" -- \
   "$bin" plan "${world[@]}" --group arm --start left --goal right --viewer "$tmp/view.html"
 expect "viewer holds the data and three.js" 0 '"frames": \[\[\[' "" -- \

@@ -26,7 +26,7 @@ def test_model_names_and_limits(arm):
     np.testing.assert_array_equal(base, np.eye(4))
 
 
-def test_load_errors_name_the_file(tmp_path):
+def test_load_errors_name_the_file(arm_files, tmp_path):
     with pytest.raises(hc.InputError, match="missing.urdf"):
         hc.RobotModel.from_urdf(str(tmp_path / "missing.urdf"))
     bad = tmp_path / "bad.urdf"
@@ -36,6 +36,8 @@ def test_load_errors_name_the_file(tmp_path):
         hc.RobotModel.from_urdf(str(bad))
     with pytest.raises(hc.InputError, match="mesh_geometry: expected 'decompose' or 'hull'"):
         hc.RobotModel.from_urdf(str(bad), mesh_geometry="spheres")
+    with pytest.raises(hc.InputError, match="package 'arm' maps to '.*nowhere', which is not a"):
+        hc.RobotModel.from_urdf(arm_files["urdf"], packages={"arm": str(tmp_path / "nowhere")})
 
 
 def test_srdf_groups(arm, srdf):

@@ -177,6 +177,17 @@ TEST(RobotErrors, PackageMapIsUsedAndReportedWhenTheFileIsMissing) {
                         (dir.path() / "my_pkg" / "meshes" / "absent.stl").string()});
 }
 
+TEST(RobotErrors, PackageMappedToAMissingFolderIsAnError) {
+  const TempDir dir("pkg_missing");
+  RobotLoadOptions options;
+  options.packages["my_pkg"] = (dir.path() / "no_such_folder").string();
+  const std::string xml = urdf_with("");
+  const std::string msg =
+      input_error_of([&] { RobotModel::from_urdf_string(xml, dir.str(), options, "probe.urdf"); });
+  expect_contains(msg, {"probe.urdf", "package 'my_pkg'", (dir.path() / "no_such_folder").string(),
+                        "not a folder"});
+}
+
 TEST(RobotErrors, RevoluteJointWithoutLimitCarriesUrdfdomReason) {
   const std::string joint = R"(  <joint name="elbow" type="revolute">
     <parent link="root"/><child link="body"/><axis xyz="0 0 1"/>

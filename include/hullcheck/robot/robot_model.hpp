@@ -111,6 +111,7 @@ struct Link {
 /// Options for loading a URDF.
 struct RobotLoadOptions {
   /// Package folders for package:// URIs, searched before the environment (resource_path.hpp).
+  /// Each must be an existing folder (InputError otherwise).
   PackageMap packages;
   /// Padding (inflation margin, m, >= 0) of links not named in `link_padding`.
   double default_padding = 0.0;
