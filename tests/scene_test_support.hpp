@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <hullcheck/core/queries.hpp>
 #include <hullcheck/robot.hpp>
 #include <hullcheck/scene/planning_scene.hpp>
 #include <memory>
@@ -102,6 +103,49 @@ inline std::shared_ptr<const RobotModel> cached_model(const std::string& urdf) {
   auto model = std::make_shared<const RobotModel>(RobotModel::from_urdf_file(urdf));
   cache.emplace_back(urdf, model);
   return model;
+}
+
+/// Minimum signed distance over every self pair `matrix` checks, each query cold: the brute
+/// force a clearance search must equal. `status`: that pair's query status.
+inline double brute_force_self_clearance(const RobotModel& model,
+                                         const AllowedCollisionMatrix& matrix,
+                                         const std::vector<Eigen::Isometry3d>& poses,
+                                         Status* status = nullptr) {
+  double best = INFINITY;
+  const int n = static_cast<int>(model.links().size());
+  for (int a = 0; a < n; ++a) {
+    for (int b = a + 1; b < n; ++b) {
+      if (matrix.allowed(a, b)) continue;
+      for (const CollisionShape& sa : model.link(a).shapes) {
+        for (const CollisionShape& sb : model.link(b).shapes) {
+          const SignedDistanceResult r =
+              signed_distance(sa.shape, poses[static_cast<std::size_t>(a)] * sa.origin, sb.shape,
+                              poses[static_cast<std::size_t>(b)] * sb.origin);
+          if (r.signed_distance < best) {
+            best = r.signed_distance;
+            if (status != nullptr) *status = r.status;
+          }
+        }
+      }
+    }
+  }
+  return best;
+}
+
+/// The same over every robot shape against every obstacle of `scene` (for scenes that allow
+/// no robot-obstacle pair).
+inline double brute_force_obstacle_clearance(const RobotModel& model, const PlanningScene& scene,
+                                             const std::vector<Eigen::Isometry3d>& poses) {
+  double best = INFINITY;
+  for (std::size_t l = 0; l < model.links().size(); ++l) {
+    for (const CollisionShape& sa : model.link(static_cast<int>(l)).shapes) {
+      for (const Obstacle& o : scene.obstacles) {
+        best = std::min(
+            best, signed_distance(sa.shape, poses[l] * sa.origin, o.shape, o.pose).signed_distance);
+      }
+    }
+  }
+  return best;
 }
 
 }  // namespace hullcheck::test

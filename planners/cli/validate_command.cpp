@@ -127,6 +127,24 @@ void run(const ValidateSettings& s) {
   }
   std::printf("path %s: %zu waypoints, %zu motions checked (guaranteed mode)\n",
               valid ? "VALID" : "INVALID", path.waypoints.size(), path.waypoints.size() - 1);
+  // Minimum clearance per scope over the sampled states (waypoints and the profile's states
+  // between them): the obstacle clearance is not hidden by a self pair that stays close.
+  std::printf("min clearance over %zu states (waypoints and %d per motion):\n", frames.size(),
+              s.samples_per_motion - 1);
+  for (const auto& [scope, name] : {std::pair{ClearanceScope::kObstacles, "obstacles"},
+                                    std::pair{ClearanceScope::kSelf, "self"}}) {
+    ClearanceResult closest;
+    for (const Eigen::VectorXd& q : frames) {
+      const ClearanceResult r = world.checker->clearance(q, scope);
+      if (r.distance < closest.distance) closest = r;
+    }
+    if (std::isinf(closest.distance)) {
+      std::printf("  %-9s none checked\n", name);
+    } else {
+      std::printf("  %-9s %.6f m  %s - %s\n", name, closest.distance,
+                  std::string(closest.name_a).c_str(), std::string(closest.name_b).c_str());
+    }
+  }
   if (!s.plot.empty()) {
     write_clearance_svg(s.plot, "clearance along " + s.path, profile);
     std::printf("clearance profile written to %s\n", s.plot.c_str());

@@ -98,6 +98,13 @@ Configurations configurations(py::handle object, const char* name, int dof) {
   return c;
 }
 
+ClearanceScope clearance_scope(const std::string& scope) {
+  if (scope == "all") return ClearanceScope::kAll;
+  if (scope == "obstacles") return ClearanceScope::kObstacles;
+  if (scope == "self") return ClearanceScope::kSelf;
+  throw InputError("scope: expected 'all', 'obstacles' or 'self', got '" + scope + "'");
+}
+
 int thread_count(py::handle threads, Eigen::Index work) {
   long n = 1;
   if (!threads.is_none()) {

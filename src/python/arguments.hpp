@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 
 #include <Eigen/Geometry>
+#include <hullcheck/scene/collision_checker.hpp>
 #include <string>
 
 namespace hullcheck::python {
@@ -46,6 +47,9 @@ struct Configurations {
   }
 };
 Configurations configurations(py::handle object, const char* name, int dof);
+
+/// "all", "obstacles" or "self" as a ClearanceScope; InputError naming `scope` otherwise.
+ClearanceScope clearance_scope(const std::string& scope);
 
 /// Threads for a batch of `work` items: None or 1 -> 1, 0 -> every hardware thread, n > 1 ->
 /// n; never more than `work`. InputError for a negative count.

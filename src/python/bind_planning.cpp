@@ -201,10 +201,12 @@ py::dict validate(const Checker& checker, py::handle path, double min_clearance,
   hullcheck::validate(options, "validate: ");
   const auto k = static_cast<py::ssize_t>(c.count);
   py::array_t<bool> state_valid(k), motion_free(std::max<py::ssize_t>(0, k - 1));
-  py::array_t<double> clearance(k), contact(std::max<py::ssize_t>(0, k - 1));
+  py::array_t<double> clearance(k), contact(std::max<py::ssize_t>(0, k - 1)), obstacle_clearance(k),
+      self_clearance(k);
   std::vector<ClearanceResult> closest(static_cast<std::size_t>(k));
   bool *sv = state_valid.mutable_data(), *mf = motion_free.mutable_data();
-  double *cl = clearance.mutable_data(), *ct = contact.mutable_data();
+  double *cl = clearance.mutable_data(), *ct = contact.mutable_data(),
+         *oc = obstacle_clearance.mutable_data(), *sc = self_clearance.mutable_data();
   bool valid = true;
   {
     py::gil_scoped_release release;
@@ -212,6 +214,8 @@ py::dict validate(const Checker& checker, py::handle path, double min_clearance,
       sv[i] = checker->is_valid(c.row(i));
       closest[static_cast<std::size_t>(i)] = checker->clearance(c.row(i));
       cl[i] = closest[static_cast<std::size_t>(i)].distance;
+      oc[i] = checker->clearance(c.row(i), ClearanceScope::kObstacles).distance;
+      sc[i] = checker->clearance(c.row(i), ClearanceScope::kSelf).distance;
       valid = valid && sv[i];
       if (i + 1 == c.count) break;
       const MotionCheckResult m = checker->check_motion(c.row(i), c.row(i + 1), options);
@@ -229,6 +233,8 @@ py::dict validate(const Checker& checker, py::handle path, double min_clearance,
   d["valid"] = valid;
   d["state_valid"] = state_valid;
   d["clearance"] = clearance;
+  d["obstacle_clearance"] = obstacle_clearance;
+  d["self_clearance"] = self_clearance;
   d["name_a"] = names_a;
   d["name_b"] = names_b;
   d["motion_free"] = motion_free;
@@ -348,7 +354,8 @@ motion between consecutive waypoints (certified everywhere, CollisionChecker.che
 min_clearance and resolution in m). InputError when a waypoint is outside its joint ranges.
 
 Returns a dict: 'valid' (bool), 'state_valid' (K,) bool, 'clearance' (K,) m with the closest
-pair's names 'name_a', 'name_b' (lists), 'motion_free' (K-1,) bool and 'contact' (K-1,): the
+pair's names 'name_a', 'name_b' (lists), 'obstacle_clearance' and 'self_clearance' (K,) m (the
+minimum over robot-obstacle pairs and over self pairs; inf without any), 'motion_free' (K-1,) bool and 'contact' (K-1,): the
 fraction of each motion at its first contact (1.0 when free).)");
   m.def("optimize_clearance", &optimize_clearance, py::arg("checker"), py::arg("path"),
         py::arg("joints") = py::none(), py::arg("time") = 1.0,

@@ -70,13 +70,15 @@ py::object is_valid(const CollisionChecker& checker, py::handle q, py::handle th
   return std::move(out);
 }
 
-py::object clearance(const CollisionChecker& checker, py::handle q, py::handle threads) {
+py::object clearance(const CollisionChecker& checker, py::handle q, py::handle threads,
+                     const std::string& scope_name) {
+  const ClearanceScope scope = clearance_scope(scope_name);
   const Configurations c = configurations(q, "q", checker.model().variable_count());
   if (c.single) {
     ClearanceResult r;
     {
       py::gil_scoped_release release;
-      r = checker.clearance(c.row(0));
+      r = checker.clearance(c.row(0), scope);
     }
     return py::cast(owned(r));
   }
@@ -94,7 +96,7 @@ py::object clearance(const CollisionChecker& checker, py::handle q, py::handle t
     py::gil_scoped_release release;
     parallel_chunks(c.count, n_threads, [&](Eigen::Index begin, Eigen::Index end) {
       for (Eigen::Index i = begin; i < end; ++i) {
-        const ClearanceResult r = checker.clearance(c.row(i));
+        const ClearanceResult r = checker.clearance(c.row(i), scope);
         d[i] = r.distance;
         s[i] = r.self;
         for (int k = 0; k < 3; ++k) {
@@ -125,7 +127,9 @@ py::object clearance(const CollisionChecker& checker, py::handle q, py::handle t
   return std::move(out);
 }
 
-py::object gradient(const CollisionChecker& checker, py::handle q, py::handle threads) {
+py::object gradient(const CollisionChecker& checker, py::handle q, py::handle threads,
+                    const std::string& scope_name) {
+  const ClearanceScope scope = clearance_scope(scope_name);
   const RobotModel& model = checker.model();
   const int dof = model.variable_count();
   const Configurations c = configurations(q, "q", dof);
@@ -141,7 +145,8 @@ py::object gradient(const CollisionChecker& checker, py::handle q, py::handle th
       std::vector<Eigen::Isometry3d> poses(model.links().size());
       for (Eigen::Index i = begin; i < end; ++i) {
         model.compute_link_poses_unchecked(c.data + i * dof, poses.data());
-        const Eigen::VectorXd row = clearance_gradient(model, poses, checker.clearance_at(poses));
+        const Eigen::VectorXd row =
+            clearance_gradient(model, poses, checker.clearance_at(poses, scope));
         Eigen::Map<Eigen::VectorXd>(g + i * dof, dof) = row;
       }
     });
@@ -267,14 +272,16 @@ void bind_scene(py::module_& m) {
       .def("is_valid", &is_valid, py::arg("q"), py::arg("threads") = 1,
            "True when no checked pair overlaps: a bool for q (dof,), a bool array (N,) for "
            "(N, dof) (blocks vectorised across configurations, identical verdicts).")
-      .def("clearance", &clearance, py::arg("q"), py::arg("threads") = 1,
+      .def("clearance", &clearance, py::arg("q"), py::arg("threads") = 1, py::arg("scope") = "all",
            "Minimum signed distance over the checked pairs, m, with the pair and witnesses: a "
            "Clearance for q (dof,); for (N, dof) a dict of arrays 'distance' (N,), "
            "'self_collision' (N,), 'point_a', 'point_b', 'normal' (N, 3) and lists 'name_a', "
-           "'name_b'.")
+           "'name_b'. scope: 'all', 'obstacles' (robot-obstacle pairs only) or 'self' (self "
+           "pairs only); inf when the scope has no pair.")
       .def("clearance_gradient", &gradient, py::arg("q"), py::arg("threads") = 1,
-           "d(clearance)/dq of the closest pair (m/rad or m/m), witnesses and normal held fixed: "
-           "(dof,) or (N, dof). Moving q along it increases that pair's distance.")
+           py::arg("scope") = "all",
+           "d(clearance)/dq of the closest pair in `scope` (m/rad or m/m), witnesses and normal "
+           "held fixed: (dof,) or (N, dof). Moving q along it increases that pair's distance.")
       .def("check_motion", &check_motion, py::arg("q0"), py::arg("q1"),
            py::arg("min_clearance") = MotionCheckOptions{}.min_clearance,
            py::arg("resolution") = MotionCheckOptions{}.resolution,

@@ -68,20 +68,21 @@ SignedDistanceResult CollisionChecker::pair_distance_below(std::size_t i, double
                                shape_pose(p.b, s), cutoff);
 }
 
-ClearanceResult CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+ClearanceResult CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                            ClearanceScope scope) const {
   model_->check_configuration(q);
   Scratch& s = scratch();
   model_->compute_link_poses_unchecked(q.data(), s.link_poses.data());
   place(s.link_poses, s);
   s.q = q.data();
-  return nearest_pair(s);
+  return nearest_pair(s, scope);
 }
 
-ClearanceResult CollisionChecker::clearance_at(
-    const std::vector<Eigen::Isometry3d>& link_poses) const {
+ClearanceResult CollisionChecker::clearance_at(const std::vector<Eigen::Isometry3d>& link_poses,
+                                               ClearanceScope scope) const {
   Scratch& s = scratch();
   place(link_poses, s);
-  return nearest_pair(s);
+  return nearest_pair(s, scope);
 }
 
 // The search of nearest_pair: best-first over the pairs by lower bounds on their signed
@@ -98,12 +99,17 @@ ClearanceResult CollisionChecker::clearance_at(
 struct CollisionChecker::NearestSearch {
   using Entry = std::pair<double, int>;
 
-  NearestSearch(const CollisionChecker& checker, Scratch& scratch)
-      : c(checker), s(scratch), n_env(checker.environment_pairs_.size()) {}
+  NearestSearch(const CollisionChecker& checker, Scratch& scratch, ClearanceScope scope)
+      : c(checker),
+        s(scratch),
+        n_env(checker.environment_pairs_.size()),
+        with_self(scope != ClearanceScope::kObstacles),
+        with_environment(scope != ClearanceScope::kSelf) {}
 
   const CollisionChecker& c;
   Scratch& s;
   std::size_t n_env;
+  bool with_self, with_environment;  // the scope: which pairs are seeded
   double cut = std::numeric_limits<double>::infinity();
   ClearanceResult best;
 
@@ -163,21 +169,26 @@ namespace {
 
 }  // namespace
 
-ClearanceResult CollisionChecker::nearest_pair(Scratch& s) const {
-  NearestSearch search(*this, s);
+ClearanceResult CollisionChecker::nearest_pair(Scratch& s, ClearanceScope scope) const {
+  NearestSearch search(*this, s, scope);
   return search.run();
 }
 
 ClearanceResult CollisionChecker::NearestSearch::run() {
-  if (n_env + c.self_pairs_.size() == 0) return best;
   // The nearest self entry and the nearest obstacle entry are refined at once: their slabs set
-  // a first cut that culls most pairs (on arms the closest pair is often a self pair).
+  // a first cut that culls most pairs (on arms the closest pair is often a self pair). Pairs
+  // outside the scope are never seeded, so never queued: every later step sees only the scope.
   s.nearest.clear();
-  seed_self_entries();
-  refine_nearest(0);
+  if (with_self) {
+    seed_self_entries();
+    refine_nearest(0);
+  }
   const std::size_t environment_begin = s.nearest.size();
-  seed_environment_entries();
-  refine_nearest(environment_begin);
+  if (with_environment) {
+    seed_environment_entries();
+    refine_nearest(environment_begin);
+  }
+  if (s.nearest.empty()) return best;
   // The queue: a binary heap, smallest bound on top (ties by pair: deterministic).
   auto& queue = s.candidates;
   queue.clear();

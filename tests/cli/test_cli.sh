@@ -104,6 +104,15 @@ expect "the path file holds the gripper at its planned value" 0 "^# held: finger
 expect "validate accepts the planned path" 0 "path VALID" "" -- \
   "$bin" validate "${world[@]}" --path "$tmp/path.csv" --plot "$tmp/clearance.svg"
 expect "validate wrote an SVG plot" 0 "<svg" "" -- head -1 "$tmp/clearance.svg"
+expect "validate reports the minimum obstacle clearance" 0 \
+  "^  obstacles +[0-9.]+ m  [a-z0-9_]+ - (table|wall|bottles|lamp)" "" -- \
+  "$bin" validate "${world[@]}" --path "$tmp/path.csv"
+expect "validate reports the minimum self clearance" 0 "^  self +[0-9.]+ m  link[0-9] - " "" -- \
+  "$bin" validate "${world[@]}" --path "$tmp/path.csv"
+printf 'name: empty\n' >"$tmp/empty_scene.yaml"
+expect "validate in a scene without obstacles: no obstacle pair" 0 "^  obstacles +none checked" \
+  "" -- "$bin" validate --robot "$urdf" --srdf "$srdf" --scene "$tmp/empty_scene.yaml" \
+  --path "$tmp/path.csv"
 # Tick labels are round: evenly spaced by 1, 2 or 5 times a power of ten, printed with the
 # decimals of that step (not 0.0201, 0.0167, ...).
 expect "the plot's tick labels are round" 0 "^round$" "" -- python3 -c "

@@ -36,6 +36,8 @@ def test_plan_over_the_wall_validates(checker, problem):
     assert v["valid"] and v["state_valid"].all() and v["motion_free"].all()
     assert (v["contact"] == 1.0).all()
     assert r["min_clearance"] == pytest.approx(v["clearance"].min())
+    np.testing.assert_array_equal(v["clearance"],
+                                  np.minimum(v["obstacle_clearance"], v["self_clearance"]))
     assert len(v["name_a"]) == len(path)
 
 

@@ -148,3 +148,27 @@ def test_checker_model_outlives_its_python_object(arm_files):
     model = checker.model
     again = hc.CollisionChecker(model, scene=arm_files["scene"])
     assert again.model.name == "hullcheck_arm" and len(again.scene.obstacles) > 0
+
+
+def test_clearance_scopes(arm, checker):
+    q = random_configurations(arm, 300, seed=9)
+    every = checker.clearance(q)
+    obstacles = checker.clearance(q, scope="obstacles")
+    own = checker.clearance(q, scope="self", threads=2)
+    np.testing.assert_array_equal(every["distance"],
+                                  np.minimum(obstacles["distance"], own["distance"]))
+    assert not obstacles["self_collision"].any() and own["self_collision"].all()
+    names = {o.name for o in checker.scene.obstacles}
+    assert set(obstacles["name_b"]) <= names
+    assert (obstacles["distance"] < own["distance"]).any()  # the scopes differ in places
+    assert (obstacles["distance"] > own["distance"]).any()
+    for i in range(0, 300, 30):
+        single = checker.clearance(q[i], scope="obstacles")
+        assert single.distance == obstacles["distance"][i]
+        assert (single.name_a, single.name_b) == (obstacles["name_a"][i], obstacles["name_b"][i])
+    g = checker.clearance_gradient(q[:5], scope="obstacles")
+    assert g.shape == (5, 8)
+    bare = hc.CollisionChecker(arm)
+    assert np.isinf(bare.clearance(q[0], scope="obstacles").distance)
+    with pytest.raises(hc.InputError, match="scope: expected 'all', 'obstacles' or 'self'"):
+        checker.clearance(q, scope="world")

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "robot_test_support.hpp"
+#include "scene_test_support.hpp"
 
 namespace hullcheck {
 namespace {
@@ -29,31 +30,6 @@ OwnArm own_arm_adjacent_allowed() {
   arm.model = std::make_shared<const RobotModel>(RobotModel::from_urdf_file(test::own_arm().urdf));
   arm.matrix = AllowedCollisionMatrix::from_adjacency(*arm.model);
   return arm;
-}
-
-// Minimum signed distance over every checked self pair, each query cold.
-double brute_force_self_clearance(const RobotModel& model, const AllowedCollisionMatrix& matrix,
-                                  const std::vector<Eigen::Isometry3d>& poses,
-                                  Status* status = nullptr) {
-  double best = INFINITY;
-  const int n = static_cast<int>(model.links().size());
-  for (int a = 0; a < n; ++a) {
-    for (int b = a + 1; b < n; ++b) {
-      if (matrix.allowed(a, b)) continue;
-      for (const CollisionShape& sa : model.link(a).shapes) {
-        for (const CollisionShape& sb : model.link(b).shapes) {
-          const SignedDistanceResult r =
-              signed_distance(sa.shape, poses[static_cast<std::size_t>(a)] * sa.origin, sb.shape,
-                              poses[static_cast<std::size_t>(b)] * sb.origin);
-          if (r.signed_distance < best) {
-            best = r.signed_distance;
-            if (status != nullptr) *status = r.status;
-          }
-        }
-      }
-    }
-  }
-  return best;
 }
 
 // Every value drawn within its limits (continuous in [-pi, pi]), then pushed beyond them by up
@@ -90,7 +66,8 @@ TEST(ClearanceWarmStart, AgreesWithColdBruteForce) {
       arm.model->compute_link_poses(q, poses);
       const ClearanceResult c = checker.clearance(q);
       Status brute_status = Status::kConverged;
-      const double brute = brute_force_self_clearance(*arm.model, arm.matrix, poses, &brute_status);
+      const double brute =
+          test::brute_force_self_clearance(*arm.model, arm.matrix, poses, &brute_status);
       // Both within the query tolerance (1e-10 x size, the arm is about 1 m) of the truth when
       // both converged. EPA may stop at its storage cap on deep overlaps of vertex-rich pieces
       // of decomposed links (flagged kIterationCap, the best depth so far): then both are

@@ -17,6 +17,15 @@
 
 namespace hullcheck {
 
+/// Which checked pairs a clearance query takes its minimum over. A planner wanting distance to
+/// the world asks kObstacles: with kAll, a fixed pair of the robot's own links that stay close
+/// (a wrist over its forearm, say) can hide the obstacle clearance along a whole path.
+enum class ClearanceScope {
+  kAll,        ///< Enabled self pairs and robot-obstacle pairs.
+  kObstacles,  ///< Robot-obstacle pairs only.
+  kSelf,       ///< Enabled self pairs only.
+};
+
 /// The closest (or deepest) checked pair at a configuration: a robot shape against another
 /// robot shape (self) or against an obstacle.
 struct ClearanceResult {
@@ -77,7 +86,10 @@ class CollisionChecker {
   /// pairs moved by at most two configuration values (wrist links, fingers) start GJK from
   /// their warm-start grid's cell for q: about half the iterations on random Panda states, the
   /// same answers to the query tolerance, and the same answer for the same q on every thread.
-  ClearanceResult clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  /// `scope` restricts the minimum to robot-obstacle or to self pairs; with none of its pairs
+  /// checked, the result's distance is +inf.
+  ClearanceResult clearance(const Eigen::Ref<const Eigen::VectorXd>& q,
+                            ClearanceScope scope = ClearanceScope::kAll) const;
   /// is_valid for many configurations: the columns of `configurations` (variable_count() rows),
   /// verdicts written to valid[0 .. cols()). Identical to is_valid column by column (tested on
   /// every MotionBenchMaker family, near-contact states included). Blocks of kPoseBlockLanes
@@ -91,7 +103,8 @@ class CollisionChecker {
   /// The same for link poses from RobotModel::compute_link_poses. clearance_at has no
   /// configuration to look the grids up with: its queries start cold (same answers, slower).
   bool is_valid_at(const std::vector<Eigen::Isometry3d>& link_poses) const;
-  ClearanceResult clearance_at(const std::vector<Eigen::Isometry3d>& link_poses) const;
+  ClearanceResult clearance_at(const std::vector<Eigen::Isometry3d>& link_poses,
+                               ClearanceScope scope = ClearanceScope::kAll) const;
 
   /// The robot's checked link pairs (model link indices, a < b): links with geometry that the
   /// matrix (with the scene's allowed pairs) does not allow to touch.
@@ -297,7 +310,7 @@ class CollisionChecker {
   /// Centre (model frame) of robot shape `shape`'s ball at the current query's poses.
   const Eigen::Vector3d& center(int shape, Scratch& s) const;
   /// clearance() at the shapes placed by place() (clearance_search.cpp).
-  ClearanceResult nearest_pair(Scratch& s) const;
+  ClearanceResult nearest_pair(Scratch& s, ClearanceScope scope) const;
   struct NearestSearch;
   struct MotionSearch;  // check_motion's bisection (motion_certificate.cpp)
   /// signed_distance_below(cutoff) of checked pair i (environment pairs first, then self pairs)
