@@ -38,11 +38,7 @@ for t in "${targets[@]}"; do
 done
 
 # Build (ccache when present; the instrumented library is separate from the gcc builds).
-launcher=()
-if command -v ccache >/dev/null; then
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$(dirname "$root")}"
-fi
+source scripts/compiler_cache.sh
 # FUZZ_CXX_FLAGS: optimisation and debug flags (default -O1 -g1; CI uses -O0, about three
 # times faster to compile, for its few seconds per target).
 CC=clang CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \

@@ -47,12 +47,8 @@ echo "ompl2.sh: OMPL 2.0.2 at $prefix"
 
 ompl_config="$(dirname "$(find "$prefix" -name omplConfig.cmake -print -quit)")"
 build=build/ci-ompl2
-# ccache when present, as scripts/test.sh: the layers below OMPL compile as in its Release build.
-launcher=()
-if command -v ccache >/dev/null; then
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$(dirname "$PWD")}"
-fi
+# ccache when present: the layers below OMPL compile as in the test script's Release build.
+source scripts/compiler_cache.sh
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -Dompl_DIR="$ompl_config" \
   -DHULLCHECK_BUILD_BENCHMARKS=OFF "${launcher[@]}" >"$build.configure.log"
 # Built against OMPL 2.0.2, not the system's 1.5.2.

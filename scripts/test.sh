@@ -16,13 +16,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 jobs="$(nproc)"
-# ccache when present (scripts/install-deps.sh installs it), with paths relative to the clone's
-# parent: later runs, other clones and the OMPL 2 stage reuse the objects compiled alike.
-launcher=()
-if command -v ccache >/dev/null; then
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$(dirname "$PWD")}"
-fi
+# ccache when present (scripts/compiler_cache.sh).
+source scripts/compiler_cache.sh
 stage_start=$SECONDS
 # Prints how long the previous stage took (CI budget: the whole script in 15 minutes on 2 cores).
 stage() {
