@@ -3,6 +3,7 @@
 // robot and core layers below them).
 #pragma once
 
+#include <hullcheck/ompl/clearance_optimizer.hpp>
 #include <hullcheck/ompl/joint_state_space.hpp>
 #include <hullcheck/ompl/motion_validator.hpp>
 #include <hullcheck/ompl/objectives.hpp>

@@ -56,15 +56,24 @@ double tick(const Ticks& t, int i) {
 
 void write_clearance_svg(const std::string& file, const std::string& title,
                          const std::vector<ClearanceSample>& samples) {
+  ClearanceCurve curve;
+  curve.samples = samples;
+  write_clearance_svg(file, title, std::vector<ClearanceCurve>{curve});
+}
+
+void write_clearance_svg(const std::string& file, const std::string& title,
+                         const std::vector<ClearanceCurve>& curves) {
   std::ofstream out(file);
   if (!out) throw InputError("plot '" + file + "': cannot write");
   const double width = 800, height = 400, left = 70, right = 20, top = 40, bottom = 50;
   double x_max = 0, y_min = 0, y_max = 0;
-  for (const ClearanceSample& s : samples) {
-    x_max = std::max(x_max, s.position);
-    if (std::isfinite(s.clearance)) {
-      y_min = std::min(y_min, s.clearance);
-      y_max = std::max(y_max, s.clearance);
+  for (const ClearanceCurve& curve : curves) {
+    for (const ClearanceSample& s : curve.samples) {
+      x_max = std::max(x_max, s.position);
+      if (std::isfinite(s.clearance)) {
+        y_min = std::min(y_min, s.clearance);
+        y_max = std::max(y_max, s.clearance);
+      }
     }
   }
   if (x_max <= 0) x_max = 1;
@@ -119,18 +128,32 @@ void write_clearance_svg(const std::string& file, const std::string& title,
                   left, py(0), width - right, py(0));
     out << buf;
   }
-  out << "<polyline fill=\"none\" stroke=\"#1f77b4\" stroke-width=\"1.5\" points=\"";
-  for (const ClearanceSample& s : samples) {
-    if (!std::isfinite(s.clearance)) continue;
-    std::snprintf(buf, sizeof buf, "%.2f,%.2f ", px(s.position), py(s.clearance));
-    out << buf;
-  }
-  out << "\"/>\n";
-  for (const ClearanceSample& s : samples) {
-    if (!s.waypoint || !std::isfinite(s.clearance)) continue;
-    std::snprintf(buf, sizeof buf, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3\" fill=\"%s\"/>\n",
-                  px(s.position), py(s.clearance), s.clearance > 0 ? "#1f77b4" : "red");
-    out << buf;
+  int legend = 0;
+  for (const ClearanceCurve& curve : curves) {
+    const std::string color = escape(curve.color);
+    out << "<polyline fill=\"none\" stroke=\"" << color << "\" stroke-width=\"1.5\""
+        << (curve.dashed ? " stroke-dasharray=\"6 4\"" : "") << " points=\"";
+    for (const ClearanceSample& s : curve.samples) {
+      if (!std::isfinite(s.clearance)) continue;
+      std::snprintf(buf, sizeof buf, "%.2f,%.2f ", px(s.position), py(s.clearance));
+      out << buf;
+    }
+    out << "\"/>\n";
+    for (const ClearanceSample& s : curve.samples) {
+      if (!s.waypoint || !std::isfinite(s.clearance)) continue;
+      std::snprintf(buf, sizeof buf, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3\" fill=\"%s\"/>\n",
+                    px(s.position), py(s.clearance), s.clearance > 0 ? color.c_str() : "red");
+      out << buf;
+    }
+    if (curve.label.empty()) continue;
+    // The legend, top right, one line per labelled curve.
+    const double ly = top + 14 + 16 * legend++;
+    std::snprintf(buf, sizeof buf,
+                  "<line x1=\"%g\" y1=\"%g\" x2=\"%g\" y2=\"%g\" stroke=\"%s\" "
+                  "stroke-width=\"2\"%s/>\n<text x=\"%g\" y=\"%g\">",
+                  width - right - 230, ly - 4, width - right - 200, ly - 4, color.c_str(),
+                  curve.dashed ? " stroke-dasharray=\"6 4\"" : "", width - right - 194, ly);
+    out << buf << escape(curve.label) << "</text>\n";
   }
   out << "</svg>\n";
   if (!out) throw InputError("plot '" + file + "': write failed");

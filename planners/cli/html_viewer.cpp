@@ -142,7 +142,8 @@ std::string filled_page(std::string_view page,
 
 void write_html_viewer(const std::string& file, const std::string& title, const RobotModel& model,
                        const PlanningScene& scene,
-                       const std::vector<Eigen::VectorXd>& configurations) {
+                       const std::vector<Eigen::VectorXd>& configurations,
+                       const std::vector<Eigen::VectorXd>& before) {
   const std::string three = read_file(std::string(kThreeDir) + "/three.min.js");
   const std::string orbit =
       read_file(std::string(kThreeDir) + "/examples/js/controls/OrbitControls.js");
@@ -181,16 +182,19 @@ void write_html_viewer(const std::string& file, const std::string& title, const 
     e << YAML::EndMap;
   }
   e << YAML::EndSeq;
-  key(e, "frames");
-  e << YAML::BeginSeq;
   std::vector<Eigen::Isometry3d> poses;
-  for (const Eigen::VectorXd& q : configurations) {
-    model.compute_link_poses(q, poses);
+  for (const auto& [name, path] : {std::pair{"frames", &configurations}, std::pair{"before", &before}}) {
+    key(e, name);
     e << YAML::BeginSeq;
-    for (const Eigen::Isometry3d& p : poses) emit_pose(e, p);
+    for (const Eigen::VectorXd& q : *path) {
+      model.compute_link_poses(q, poses);
+      e << YAML::BeginSeq;
+      for (const Eigen::Isometry3d& p : poses) emit_pose(e, p);
+      e << YAML::EndSeq;
+    }
     e << YAML::EndSeq;
   }
-  e << YAML::EndSeq << YAML::EndMap;
+  e << YAML::EndMap;
 
   const std::string heading = html_escaped(title);
   std::ofstream out(file);

@@ -15,10 +15,13 @@ namespace hullcheck::cli {
 /// vectors, played as an animation with a slider), the scene's obstacles, and `title` (HTML-
 /// escaped). z is up; the camera is fitted to the obstacles and the robot along the whole path
 /// (double-click refits), the light follows the camera.
-/// Throws InputError when three.js is not installed (package libjs-three) or the file cannot
-/// be written.
+/// With `before` (a second path, e.g. the path before optimization), that path's robot is drawn
+/// too, translucent grey, moving in step with the first (same fraction of its frames), and each
+/// path's last link traces its line (grey before, green the path). Throws InputError when
+/// three.js is not installed (package libjs-three) or the file cannot be written.
 void write_html_viewer(const std::string& file, const std::string& title, const RobotModel& model,
                        const PlanningScene& scene,
-                       const std::vector<Eigen::VectorXd>& configurations);
+                       const std::vector<Eigen::VectorXd>& configurations,
+                       const std::vector<Eigen::VectorXd>& before = {});
 
 }  // namespace hullcheck::cli

@@ -6,10 +6,12 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <tuple>
 
 #include "exit_codes.hpp"
 #include "html_viewer.hpp"
 #include "number_options.hpp"
+#include "optimization_options.hpp"
 #include "path_file.hpp"
 #include "planner_factory.hpp"
 #include "problem.hpp"
@@ -24,7 +26,9 @@ struct PlanSettings {
   std::string objective = "length";
   double time = 10.0;
   bool simplify = false;
+  OptimizationOptions optimization;
   std::string out;
+  std::string plot;
   std::string viewer;
   bool discrete = false;
   bool verbose = false;
@@ -58,6 +62,16 @@ void run(const PlanSettings& s) {
                           s.discrete ? MotionChecking::kDiscrete : MotionChecking::kGuaranteed);
   ::ompl::geometric::SimpleSetup& ss = *planning.setup;
   const auto si = ss.getSpaceInformation();
+  // The clearance scope of the objectives, the optimizer and the reports below.
+  const std::shared_ptr<const PairScope> scope =
+      s.optimization.make_scope(*world.checker, variables, start);
+  planning.validity->set_clearance_scope(scope);
+  if (scope && s.optimization.scope == "auto") {
+    std::printf("clearance scope auto: obstacles and %zu of %zu self pairs (those the group can take "
+                "within %g m and clear of it)\n",
+                scope->self_link_pairs().size(), world.checker->checked_link_pairs().size(),
+                s.optimization.settings.margin);
+  }
   ss.setStartAndGoalStates(planning.state(start), planning.state(goal));
   ss.setOptimizationObjective(make_objective(s.objective, si));
   ss.setPlanner(make_planner(s.planner, si));
@@ -88,6 +102,47 @@ void run(const PlanSettings& s) {
     std::printf("simplified (objective-aware) in %.3f s\n",
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count());
   }
+  const ::ompl::geometric::PathGeometric before(path);
+  if (s.optimization.enabled()) {
+    const ClearanceOptimizationResult r =
+        optimize_clearance(si, *planning.validity, path, s.optimization.settings);
+    std::printf(
+        "optimized for clearance (scope %s, margin %g m, length weight %g) in %.3f s: %s; "
+        "objective %.4f -> %.4f, length %.4f -> %.4f (%+.1f%%), %d rounds, %d waypoint moves\n",
+        s.optimization.scope.c_str(), s.optimization.settings.margin,
+        s.optimization.settings.length_weight, r.seconds,
+        r.changed ? "path replaced" : "input kept (no certified improvement)", r.cost_before,
+        r.cost_after, r.length_before, r.length_after,
+        100.0 * (r.length_after / r.length_before - 1.0), r.rounds, r.moves);
+  }
+  // Per-scope minima over the waypoints and 19 states inside each motion, before and after.
+  const PairScope obstacles = world.checker->pair_scope(ClearanceScope::kObstacles);
+  const PairScope self_pairs = world.checker->pair_scope(ClearanceScope::kSelf);
+  std::vector<ClearanceCurve> curves;
+  for (const auto& [pairs, name, color, faded] :
+       {std::tuple{&obstacles, "obstacles", "#1f77b4", "#9ecae1"},
+        std::tuple{&self_pairs, "self", "#ff7f0e", "#fdd0a2"}}) {
+    const std::vector<ClearanceSample> after = clearance_profile(planning, path, pairs, 20);
+    if (s.optimization.enabled()) {
+      const std::vector<ClearanceSample> old = clearance_profile(planning, before, pairs, 20);
+      std::printf("  min %-9s clearance %.4f -> %.4f m (%+.4f m)\n", name, profile_minimum(old),
+                  profile_minimum(after), profile_minimum(after) - profile_minimum(old));
+      curves.push_back({std::string(name) + " before", faded, true, old});
+      curves.push_back({std::string(name) + " after", color, false, after});
+    } else {
+      std::printf("  min %-9s clearance %.4f m\n", name, profile_minimum(after));
+      curves.push_back({name, color, false, after});
+    }
+  }
+  if (!s.plot.empty()) {
+    write_clearance_svg(s.plot,
+                        "clearance per scope along the path" +
+                            std::string(s.optimization.enabled() ? ", before and after "
+                                                                   "optimization"
+                                                                 : ""),
+                        curves);
+    std::printf("clearance profiles written to %s\n", s.plot.c_str());
+  }
   double min_clearance = INFINITY;
   ClearanceResult closest;
   for (std::size_t i = 0; i < path.getStateCount(); ++i) {
@@ -97,8 +152,9 @@ void run(const PlanSettings& s) {
       closest = r;
     }
   }
-  std::printf("path: %zu waypoints, length %.4f, min waypoint clearance %.4f m (%s)\n",
-              path.getStateCount(), path.length(), min_clearance, describe_pair(closest).c_str());
+  std::printf("path: %zu waypoints, length %.4f, min waypoint clearance (scope %s) %.4f m (%s)\n",
+              path.getStateCount(), path.length(), s.optimization.scope.c_str(), min_clearance,
+              describe_pair(closest).c_str());
   JointPath out;
   for (int v : variables)
     out.joint_names.push_back(world.model->joint(world.model->variable_joint(v)).name);
@@ -121,14 +177,21 @@ void run(const PlanSettings& s) {
     std::printf("path written to %s\n", s.out.c_str());
   }
   if (!s.viewer.empty()) {
-    ::ompl::geometric::PathGeometric dense(path);
-    dense.interpolate(static_cast<unsigned>(std::max<std::size_t>(120, 10 * path.getStateCount())));
-    std::vector<Eigen::VectorXd> frames;
-    for (std::size_t i = 0; i < dense.getStateCount(); ++i) {
-      frames.push_back(planning.configuration(dense.getState(i)));
-    }
-    write_html_viewer(s.viewer, "hullcheck plan: " + world.model->name(), *world.model,
-                      world.checker->scene(), frames);
+    const auto frames_of = [&](const ::ompl::geometric::PathGeometric& p) {
+      ::ompl::geometric::PathGeometric dense(p);
+      dense.interpolate(static_cast<unsigned>(std::max<std::size_t>(120, 4 * p.getStateCount())));
+      std::vector<Eigen::VectorXd> frames;
+      for (std::size_t i = 0; i < dense.getStateCount(); ++i) {
+        frames.push_back(planning.configuration(dense.getState(i)));
+      }
+      return frames;
+    };
+    write_html_viewer(s.viewer,
+                      "hullcheck plan: " + world.model->name() +
+                          (s.optimization.enabled() ? " (grey: before optimization)" : ""),
+                      *world.model, world.checker->scene(), frames_of(path),
+                      s.optimization.enabled() ? frames_of(before)
+                                               : std::vector<Eigen::VectorXd>{});
     std::printf("viewer written to %s\n", s.viewer.c_str());
   }
 }
@@ -147,6 +210,10 @@ void add_plan_command(CLI::App& app) {
   command->add_option("--time", s->time, "Planning time limit, s (default 10)")
       ->check(finite_in(0.0, 1e9, true));
   command->add_flag("--simplify", s->simplify, "Simplify the path with the objective");
+  s->optimization.add_to(*command);
+  command->add_option("--plot", s->plot,
+                      "Write the clearance profiles per scope (before and after --optimize) as "
+                      "an SVG plot");
   command->add_option("--out", s->out, "Write the path: CSV, or JSON when PATH ends in .json");
   command->add_option("--viewer", s->viewer,
                       "Write a self-contained HTML page animating the path in 3D");

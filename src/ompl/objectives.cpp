@@ -1,6 +1,7 @@
 #include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 
+#include <algorithm>
 #include <cmath>
 #include <hullcheck/core/errors.hpp>
 #include <hullcheck/ompl/objectives.hpp>
@@ -25,6 +26,27 @@ ob::Cost ClearanceCostObjective::stateCost(const ob::State* s) const {
   const double d = si_->getStateValidityChecker()->clearance(s);
   // Far from everything (or nothing checked): no cost.
   return ob::Cost(std::isfinite(d) ? std::exp(-d / scale_) : 0.0);
+}
+
+ClearanceMarginObjective::ClearanceMarginObjective(const ob::SpaceInformationPtr& si,
+                                                   double margin, double length_weight)
+    : ob::StateCostIntegralObjective(si, /*enableMotionCostInterpolation=*/true),
+      margin_(margin),
+      length_weight_(length_weight) {
+  if (!(margin > 0.0) || !std::isfinite(margin) || !(length_weight >= 0.0) ||
+      !std::isfinite(length_weight)) {
+    throw InputError(
+        "ClearanceMarginObjective: margin must be finite and > 0, length_weight finite and >= 0");
+  }
+  description_ = "Clearance margin (length and a hinge on clearance below the margin)";
+}
+
+double ClearanceMarginObjective::density(double d) const {
+  return length_weight_ + std::max(0.0, margin_ - d) / margin_;
+}
+
+ob::Cost ClearanceMarginObjective::stateCost(const ob::State* s) const {
+  return ob::Cost(density(si_->getStateValidityChecker()->clearance(s)));
 }
 
 ob::OptimizationObjectivePtr make_length_clearance_objective(const ob::SpaceInformationPtr& si,

@@ -31,17 +31,31 @@ bool StateValidityChecker::isValid(const ::ompl::base::State* state) const {
   return checker_->is_valid(configuration(state));
 }
 
+void StateValidityChecker::set_clearance_scope(std::shared_ptr<const PairScope> scope) {
+  if (scope) {
+    // Rejects a scope of another checker now rather than at the first query.
+    checker_->clearance(space_->fixed_configuration(), *scope);
+  }
+  scope_ = std::move(scope);
+}
+
+ClearanceResult StateValidityChecker::scoped_clearance(const Eigen::VectorXd& q) const {
+  return scope_ ? checker_->clearance(q, *scope_) : checker_->clearance(q);
+}
+
 bool StateValidityChecker::isValid(const ::ompl::base::State* state, double& dist) const {
-  dist = checker_->clearance(configuration(state)).distance;
-  return dist > 0.0;
+  const Eigen::VectorXd& q = configuration(state);
+  dist = scoped_clearance(q).distance;
+  if (!scope_) return dist > 0.0;
+  return dist > 0.0 && checker_->is_valid(q);
 }
 
 double StateValidityChecker::clearance(const ::ompl::base::State* state) const {
-  return checker_->clearance(configuration(state)).distance;
+  return scoped_clearance(configuration(state)).distance;
 }
 
 ClearanceResult StateValidityChecker::closest(const ::ompl::base::State* state) const {
-  return checker_->clearance(configuration(state));
+  return scoped_clearance(configuration(state));
 }
 
 }  // namespace hullcheck

@@ -85,6 +85,25 @@ ClearanceResult CollisionChecker::clearance_at(const std::vector<Eigen::Isometry
   return nearest_pair(s, scope);
 }
 
+ClearanceResult CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                            const PairScope& scope) const {
+  const char* mask = self_mask(scope);
+  model_->check_configuration(q);
+  Scratch& s = scratch();
+  model_->compute_link_poses_unchecked(q.data(), s.link_poses.data());
+  place(s.link_poses, s);
+  s.q = q.data();
+  return nearest_pair(s, scope.obstacles() ? ClearanceScope::kAll : ClearanceScope::kSelf, mask);
+}
+
+ClearanceResult CollisionChecker::clearance_at(const std::vector<Eigen::Isometry3d>& link_poses,
+                                               const PairScope& scope) const {
+  const char* mask = self_mask(scope);
+  Scratch& s = scratch();
+  place(link_poses, s);
+  return nearest_pair(s, scope.obstacles() ? ClearanceScope::kAll : ClearanceScope::kSelf, mask);
+}
+
 // The search of nearest_pair: best-first over the pairs by lower bounds on their signed
 // distance, refined lazily. Every pair gets its bounding balls' bound (a link pair with many
 // shape pairs, or an obstacle with a decomposed mesh's pieces, gets one block entry bounded by
@@ -99,17 +118,20 @@ ClearanceResult CollisionChecker::clearance_at(const std::vector<Eigen::Isometry
 struct CollisionChecker::NearestSearch {
   using Entry = std::pair<double, int>;
 
-  NearestSearch(const CollisionChecker& checker, Scratch& scratch, ClearanceScope scope)
+  NearestSearch(const CollisionChecker& checker, Scratch& scratch, ClearanceScope scope,
+                const char* mask)
       : c(checker),
         s(scratch),
         n_env(checker.environment_pairs_.size()),
         with_self(scope != ClearanceScope::kObstacles),
-        with_environment(scope != ClearanceScope::kSelf) {}
+        with_environment(scope != ClearanceScope::kSelf),
+        self_mask(mask) {}
 
   const CollisionChecker& c;
   Scratch& s;
   std::size_t n_env;
   bool with_self, with_environment;  // the scope: which pairs are seeded
+  const char* self_mask;             // per self block, 1: seeded (null: all)
   double cut = std::numeric_limits<double>::infinity();
   ClearanceResult best;
 
@@ -169,8 +191,9 @@ namespace {
 
 }  // namespace
 
-ClearanceResult CollisionChecker::nearest_pair(Scratch& s, ClearanceScope scope) const {
-  NearestSearch search(*this, s, scope);
+ClearanceResult CollisionChecker::nearest_pair(Scratch& s, ClearanceScope scope,
+                                               const char* self_mask) const {
+  NearestSearch search(*this, s, scope, self_mask);
   return search.run();
 }
 
@@ -287,6 +310,7 @@ double CollisionChecker::NearestSearch::refine(std::size_t i, double ball) {
 
 [[gnu::flatten]] void CollisionChecker::NearestSearch::seed_self_entries() {
   for (std::size_t b = 0; b < c.self_blocks_.size(); ++b) {
+    if (self_mask != nullptr && self_mask[b] == 0) continue;
     const SelfBlock& block = c.self_blocks_[b];
     if (block.end - block.begin <= kGroupSize) {
       push_self_pairs(block, &s.nearest);

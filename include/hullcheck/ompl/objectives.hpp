@@ -26,6 +26,27 @@ class ClearanceCostObjective : public ::ompl::base::StateCostIntegralObjective {
   double scale_;
 };
 
+/// The clearance optimizer's objective (optimize_clearance): the integral along the path of
+/// length_weight + max(0, margin - clearance) / margin, clearance being the space information's
+/// StateValidityChecker::clearance (its scope). So each unit of joint-space length costs
+/// length_weight, plus up to 1 more where the robot comes within `margin` (m) of a pair of the
+/// scope (1 at contact, more in penetration), integrated over motion segments (motion cost
+/// interpolation enabled) as a hinge loss on signed distance, as in TrajOpt. margin finite
+/// and > 0, length_weight finite and >= 0.
+class ClearanceMarginObjective : public ::ompl::base::StateCostIntegralObjective {
+ public:
+  ClearanceMarginObjective(const ::ompl::base::SpaceInformationPtr& si, double margin,
+                           double length_weight);
+  ::ompl::base::Cost stateCost(const ::ompl::base::State* s) const override;
+  /// The cost density at signed distance d: length_weight + max(0, margin - d) / margin.
+  double density(double d) const;
+  double margin() const { return margin_; }
+  double length_weight() const { return length_weight_; }
+
+ private:
+  double margin_, length_weight_;
+};
+
 /// Path length (weight `length_weight`) plus ClearanceCostObjective (weight
 /// `clearance_weight`, its `scale`), as one OMPL MultiOptimizationObjective. Weights >= 0.
 ::ompl::base::OptimizationObjectivePtr make_length_clearance_objective(

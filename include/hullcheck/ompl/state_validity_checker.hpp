@@ -14,10 +14,12 @@ namespace hullcheck {
 /// Validity of OMPL states of a JointStateSpace: robot against its enabled self pairs and the
 /// scene's obstacles (CollisionChecker), with the robot's padding.
 ///
-/// - isValid(state): boolean collision test with early exit (cheapest).
-/// - clearance(state): exact minimum signed distance over all checked pairs, m (negative: the
-///   penetration depth of the deepest pair, by EPA). +inf when nothing is checked.
-/// - isValid(state, dist): both in one pass.
+/// - isValid(state): boolean collision test with early exit (cheapest); every checked pair.
+/// - clearance(state): exact minimum signed distance over the clearance scope's pairs, m
+///   (negative: the penetration depth of the deepest pair, by EPA); every checked pair unless
+///   set_clearance_scope chose some. +inf when the scope holds nothing. OMPL's clearance
+///   objectives read it, so the scope is what they optimise.
+/// - isValid(state, dist): both (validity over every pair, dist over the scope).
 /// - closest(state): the pair behind clearance(), with link/obstacle names and witnesses.
 /// Specs: clearanceComputationType EXACT, hasValidDirectionComputation false. Thread-safe:
 /// every method is const and uses per-thread scratch (no lock), as OMPL's parallel planners
@@ -33,6 +35,14 @@ class StateValidityChecker : public ::ompl::base::StateValidityChecker {
   double clearance(const ::ompl::base::State* state) const override;
   ClearanceResult closest(const ::ompl::base::State* state) const;
 
+  /// Restricts clearance(), closest() and isValid(state, dist)'s dist to the pairs of `scope`
+  /// (a PairScope of collision_checker(), e.g. from optimization_scope()); null: every checked
+  /// pair (the default). Validity is never restricted. Set it before planning: it is not
+  /// synchronised with queries running on other threads.
+  void set_clearance_scope(std::shared_ptr<const PairScope> scope);
+  /// The scope set, or null for every checked pair.
+  const std::shared_ptr<const PairScope>& clearance_scope() const { return scope_; }
+
   /// Validity and clearance computations so far (all threads; relaxed atomic counter).
   unsigned long check_count() const { return checks_.load(std::memory_order_relaxed); }
   void reset_check_count() { checks_.store(0); }
@@ -45,6 +55,8 @@ class StateValidityChecker : public ::ompl::base::StateValidityChecker {
 
   std::shared_ptr<const JointStateSpace> space_;
   std::shared_ptr<const CollisionChecker> checker_;
+  std::shared_ptr<const PairScope> scope_;
+  ClearanceResult scoped_clearance(const Eigen::VectorXd& q) const;
   mutable std::atomic<unsigned long> checks_{0};
 };
 

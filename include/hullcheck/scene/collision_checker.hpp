@@ -8,6 +8,7 @@
 #include <hullcheck/robot/allowed_collision_matrix.hpp>
 #include <hullcheck/robot/robot_model.hpp>
 #include <hullcheck/scene/motion_check.hpp>
+#include <hullcheck/scene/pair_scope.hpp>
 #include <hullcheck/scene/planning_scene.hpp>
 #include <limits>
 #include <memory>
@@ -90,6 +91,15 @@ class CollisionChecker {
   /// checked, the result's distance is +inf.
   ClearanceResult clearance(const Eigen::Ref<const Eigen::VectorXd>& q,
                             ClearanceScope scope = ClearanceScope::kAll) const;
+  /// clearance over the pairs of `scope` (see PairScope); +inf when it holds no checked pair.
+  ClearanceResult clearance(const Eigen::Ref<const Eigen::VectorXd>& q,
+                            const PairScope& scope) const;
+  /// A PairScope of this checker: robot-obstacle pairs when `obstacles`, and the checked self
+  /// link pairs listed (model link indices, either order). Throws InputError naming a listed
+  /// pair that is not a checked link pair (checked_link_pairs()).
+  PairScope pair_scope(bool obstacles, const std::vector<std::pair<int, int>>& self_link_pairs) const;
+  /// The PairScope holding the pairs of `scope`.
+  PairScope pair_scope(ClearanceScope scope) const;
   /// is_valid for many configurations: the columns of `configurations` (variable_count() rows),
   /// verdicts written to valid[0 .. cols()). Identical to is_valid column by column (tested on
   /// every MotionBenchMaker family, near-contact states included). Blocks of kPoseBlockLanes
@@ -105,6 +115,8 @@ class CollisionChecker {
   bool is_valid_at(const std::vector<Eigen::Isometry3d>& link_poses) const;
   ClearanceResult clearance_at(const std::vector<Eigen::Isometry3d>& link_poses,
                                ClearanceScope scope = ClearanceScope::kAll) const;
+  ClearanceResult clearance_at(const std::vector<Eigen::Isometry3d>& link_poses,
+                               const PairScope& scope) const;
 
   /// The robot's checked link pairs (model link indices, a < b): links with geometry that the
   /// matrix (with the scene's allowed pairs) does not allow to touch.
@@ -310,7 +322,11 @@ class CollisionChecker {
   /// Centre (model frame) of robot shape `shape`'s ball at the current query's poses.
   const Eigen::Vector3d& center(int shape, Scratch& s) const;
   /// clearance() at the shapes placed by place() (clearance_search.cpp).
-  ClearanceResult nearest_pair(Scratch& s, ClearanceScope scope) const;
+  /// With `self_mask` (per self block, 1: seeded), only those self blocks are searched.
+  ClearanceResult nearest_pair(Scratch& s, ClearanceScope scope,
+                               const char* self_mask = nullptr) const;
+  /// The self mask of `scope`; throws InputError when the scope is not this checker's.
+  const char* self_mask(const PairScope& scope) const;
   struct NearestSearch;
   struct MotionSearch;  // check_motion's bisection (motion_certificate.cpp)
   /// signed_distance_below(cutoff) of checked pair i (environment pairs first, then self pairs)

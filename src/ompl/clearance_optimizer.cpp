@@ -1,0 +1,322 @@
+// optimize_clearance: gradient rounds on the waypoints of a path against a hinge on signed
+// distance plus length, each round certified, then objective-aware shortcuts.
+//
+// The objective (ClearanceMarginObjective) is the integral over the path of the density
+// rho(d) = w + max(0, m - d) / m. Discretised at the waypoints q_0 .. q_n with segment lengths
+// l_k = |q_{k+1} - q_k| (joint space, continuous joints the short way) and densities
+// rho_k = rho(d(q_k)), it is the trapezoid sum
+//   F = sum_k l_k (rho_k + rho_{k+1}) / 2,
+// whose only terms holding an interior waypoint q_i are
+//   f_i = l_{i-1} (rho_{i-1} + rho_i) / 2 + l_i (rho_i + rho_{i+1}) / 2.
+// With u_a = (q_i - q_{i-1}) / l_{i-1}, u_b = (q_i - q_{i+1}) / l_i and
+// d rho_i / d q_i = -grad d(q_i) / m where d(q_i) < m (0 beyond the margin),
+//   d f_i / d q_i = (rho_{i-1} + rho_i) / 2 u_a + (rho_i + rho_{i+1}) / 2 u_b
+//                   + (l_{i-1} + l_i) / 2 d rho_i / d q_i.
+// grad d is clearance_gradient's: the closest pair's witness points held on their links.
+// Moving one waypoint at a time (Gauss-Seidel) and keeping a move only when f_i falls, F falls
+// with every kept move.
+#include <ompl/config.h>
+#include <ompl/geometric/PathSimplifier.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <hullcheck/core/errors.hpp>
+#include <hullcheck/ompl/clearance_optimizer.hpp>
+#include <hullcheck/ompl/objectives.hpp>
+#include <hullcheck/scene/clearance_gradient.hpp>
+#include <limits>
+#include <memory>
+#include <vector>
+
+namespace hullcheck {
+
+namespace ob = ::ompl::base;
+namespace og = ::ompl::geometric;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+void check_options(const ClearanceOptimizationOptions& o) {
+  const auto positive = [](double x) { return x > 0.0 && std::isfinite(x); };
+  if (!positive(o.margin) || !(o.length_weight >= 0.0) || !std::isfinite(o.length_weight) ||
+      !positive(o.time) || !positive(o.waypoint_spacing) || o.max_waypoints < 3 ||
+      !positive(o.max_step)) {
+    throw InputError(
+        "optimize_clearance: margin, time, waypoint_spacing and max_step must be finite and > 0, "
+        "length_weight finite and >= 0, max_waypoints >= 3");
+  }
+}
+
+// The waypoints being optimised: full configurations, their densities and scoped clearances.
+struct Waypoints {
+  std::vector<Eigen::VectorXd> q;
+  std::vector<double> d;    // scoped signed distance, m
+  std::vector<double> rho;  // cost density
+};
+
+class Optimizer {
+ public:
+  Optimizer(const ob::SpaceInformationPtr& si, const StateValidityChecker& validity,
+            const ClearanceOptimizationOptions& options, const ClearanceMarginObjective& objective)
+      : si_(si),
+        validity_(validity),
+        joints_(validity.joint_space()),
+        checker_(validity.collision_checker()),
+        model_(joints_.model()),
+        options_(options),
+        objective_(objective),
+        lower_(model_.lower_limits()),
+        upper_(model_.upper_limits()),
+        state_(si->allocState()),
+        other_(si->allocState()) {}
+  ~Optimizer() {
+    si_->freeState(state_);
+    si_->freeState(other_);
+  }
+  Optimizer(const Optimizer&) = delete;
+  Optimizer& operator=(const Optimizer&) = delete;
+
+  /// Loads the path's states as waypoints.
+  void load(const og::PathGeometric& path) {
+    w_.q.clear();
+    for (std::size_t i = 0; i < path.getStateCount(); ++i) {
+      w_.q.push_back(Eigen::VectorXd(model_.variable_count()));
+      joints_.to_configuration(path.getState(i), w_.q.back());
+    }
+    w_.d.assign(w_.q.size(), 0.0);
+    w_.rho.assign(w_.q.size(), 0.0);
+    for (std::size_t i = 0; i < w_.q.size(); ++i) evaluate(i);
+    step_.assign(w_.q.size(), 1.0);
+  }
+
+  /// Writes the waypoints into `path`.
+  void store(og::PathGeometric& path) const {
+    path.clear();
+    for (const Eigen::VectorXd& q : w_.q) {
+      joints_.from_configuration(q, state_);
+      path.append(state_);
+    }
+  }
+
+  /// One Gauss-Seidel pass over the interior waypoints; returns the moves kept. Stops early at
+  /// `deadline`.
+  int round(Clock::time_point deadline) {
+    int moves = 0;
+    Eigen::VectorXd g(model_.variable_count()), trial(model_.variable_count());
+    for (std::size_t i = 1; i + 1 < w_.q.size(); ++i) {
+      if (Clock::now() > deadline) break;
+      if (!(step_[i] > kSmallestStep)) continue;
+      gradient(i, g);
+      const double largest = g.cwiseAbs().maxCoeff();
+      if (!(largest > 0.0)) continue;
+      const double before = local_cost(i, w_.q[i], w_.rho[i]);
+      bool kept = false;
+      for (int attempt = 0; attempt < 3 && step_[i] > kSmallestStep; ++attempt) {
+        trial = w_.q[i] - (step_[i] * options_.max_step / largest) * g;
+        clamp(trial);
+        const double d = checker_.is_valid(trial) ? scoped_distance(trial) : -1.0;
+        if (d > 0.0) {
+          const double rho = objective_.density(d);
+          if (local_cost(i, trial, rho) < before - 1e-12 * std::abs(before)) {
+            w_.q[i] = trial;
+            w_.d[i] = d;
+            w_.rho[i] = rho;
+            step_[i] = std::min(1.0, 2.0 * step_[i]);
+            kept = true;
+            break;
+          }
+        }
+        step_[i] *= 0.5;
+      }
+      moves += kept ? 1 : 0;
+    }
+    return moves;
+  }
+
+  /// Checks every motion between consecutive waypoints with the motion validator; waypoints
+  /// that moved since `certified` and border a failing motion go back to their certified
+  /// values until all pass. Returns true when nothing had to go back.
+  bool certify(const Waypoints& certified) {
+    bool clean = true;
+    for (bool again = true; again;) {
+      again = false;
+      for (std::size_t k = 0; k + 1 < w_.q.size(); ++k) {
+        if (w_.q[k] == certified.q[k] && w_.q[k + 1] == certified.q[k + 1]) continue;
+        joints_.from_configuration(w_.q[k], state_);
+        joints_.from_configuration(w_.q[k + 1], other_);
+        if (si_->checkMotion(state_, other_)) continue;
+        clean = false;
+        again = true;
+        for (std::size_t j : {k, k + 1}) {
+          w_.q[j] = certified.q[j];
+          w_.d[j] = certified.d[j];
+          w_.rho[j] = certified.rho[j];
+          step_[j] *= 0.25;
+        }
+      }
+    }
+    return clean;
+  }
+
+  const Waypoints& waypoints() const { return w_; }
+
+ private:
+  static constexpr double kSmallestStep = 1.0 / 64.0;
+
+  double scoped_distance(const Eigen::VectorXd& q) const {
+    const std::shared_ptr<const PairScope>& scope = validity_.clearance_scope();
+    return scope ? checker_.clearance(q, *scope).distance : checker_.clearance(q).distance;
+  }
+  void evaluate(std::size_t i) {
+    w_.d[i] = scoped_distance(w_.q[i]);
+    w_.rho[i] = objective_.density(w_.d[i]);
+  }
+  // Group values of b - a, continuous joints the short way round.
+  double difference(int v, const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
+    const double x = b[v] - a[v];
+    return std::isfinite(lower_[v]) ? x : std::remainder(x, 2.0 * M_PI);
+  }
+  double distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
+    double sum = 0.0;
+    for (int v : joints_.variables()) sum += difference(v, a, b) * difference(v, a, b);
+    return std::sqrt(sum);
+  }
+  double local_cost(std::size_t i, const Eigen::VectorXd& q, double rho) const {
+    return 0.5 * distance(w_.q[i - 1], q) * (w_.rho[i - 1] + rho) +
+           0.5 * distance(q, w_.q[i + 1]) * (rho + w_.rho[i + 1]);
+  }
+  // d f_i / d q_i over the group's values (zero elsewhere); see the file's comment.
+  void gradient(std::size_t i, Eigen::VectorXd& g) {
+    g.setZero();
+    const double la = distance(w_.q[i - 1], w_.q[i]), lb = distance(w_.q[i], w_.q[i + 1]);
+    const double wa = 0.5 * (w_.rho[i - 1] + w_.rho[i]), wb = 0.5 * (w_.rho[i] + w_.rho[i + 1]);
+    for (int v : joints_.variables()) {
+      if (la > 0.0) g[v] += wa * difference(v, w_.q[i - 1], w_.q[i]) / la;
+      if (lb > 0.0) g[v] += wb * difference(v, w_.q[i + 1], w_.q[i]) / lb;
+    }
+    if (!(w_.d[i] < options_.margin)) return;
+    model_.compute_link_poses(w_.q[i], poses_);
+    const std::shared_ptr<const PairScope>& scope = validity_.clearance_scope();
+    const ClearanceResult closest =
+        scope ? checker_.clearance_at(poses_, *scope) : checker_.clearance_at(poses_);
+    if (closest.link_a < 0) return;
+    const Eigen::VectorXd dd = clearance_gradient(model_, poses_, closest);
+    const double weight = 0.5 * (la + lb) / options_.margin;
+    for (int v : joints_.variables()) g[v] -= weight * dd[v];
+  }
+  void clamp(Eigen::VectorXd& q) const {
+    for (int v : joints_.variables()) {
+      if (std::isfinite(lower_[v])) q[v] = std::min(upper_[v], std::max(lower_[v], q[v]));
+    }
+  }
+
+  ob::SpaceInformationPtr si_;
+  const StateValidityChecker& validity_;
+  const JointStateSpace& joints_;
+  const CollisionChecker& checker_;
+  const RobotModel& model_;
+  const ClearanceOptimizationOptions& options_;
+  const ClearanceMarginObjective& objective_;
+  Eigen::VectorXd lower_, upper_;
+  ob::State* state_;
+  ob::State* other_;
+  Waypoints w_;
+  std::vector<double> step_;  // per waypoint: its step as a fraction of max_step
+  std::vector<Eigen::Isometry3d> poses_;
+};
+
+// Minimum of the validity checker's (scoped) clearance over the path's states.
+double min_waypoint_clearance(const StateValidityChecker& validity,
+                              const og::PathGeometric& path) {
+  double m = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < path.getStateCount(); ++i) {
+    m = std::min(m, validity.clearance(path.getState(i)));
+  }
+  return m;
+}
+
+// Every motion of the path passes the motion validator.
+bool all_motions_pass(const ob::SpaceInformationPtr& si, const og::PathGeometric& path) {
+  for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i) {
+    if (!si->checkMotion(path.getState(i), path.getState(i + 1))) return false;
+  }
+  return true;
+}
+
+// One pass of OMPL's shortcuts under the objective (OMPL 1.7 renamed shortcutPath).
+bool shortcut(og::PathSimplifier& simplifier, og::PathGeometric& path) {
+  const unsigned attempts = static_cast<unsigned>(std::min<std::size_t>(path.getStateCount(), 16));
+#if OMPL_VERSION_VALUE >= 1007000
+  return simplifier.partialShortcutPath(path, attempts, attempts);
+#else
+  return simplifier.shortcutPath(path, attempts, attempts);
+#endif
+}
+
+}  // namespace
+
+ClearanceOptimizationResult optimize_clearance(const ob::SpaceInformationPtr& si,
+                                               const StateValidityChecker& validity,
+                                               og::PathGeometric& path,
+                                               const ClearanceOptimizationOptions& options) {
+  check_options(options);
+  if (!si || path.getSpaceInformation() != si ||
+      si->getStateValidityChecker().get() != &validity) {
+    throw InputError(
+        "optimize_clearance: the path and the validity checker must belong to the space "
+        "information given");
+  }
+  const Clock::time_point start = Clock::now();
+  const Clock::time_point deadline =
+      start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.time));
+  const auto objective =
+      std::make_shared<ClearanceMarginObjective>(si, options.margin, options.length_weight);
+  ClearanceOptimizationResult result;
+  result.cost_before = path.cost(objective).value();
+  result.length_before = path.length();
+  result.min_clearance_before = min_waypoint_clearance(validity, path);
+  const auto finish = [&](const og::PathGeometric& final_path) {
+    result.cost_after = final_path.cost(objective).value();
+    result.length_after = final_path.length();
+    result.min_clearance_after = min_waypoint_clearance(validity, final_path);
+    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return result;
+  };
+  if (path.getStateCount() < 2) return finish(path);
+
+  og::PathGeometric work(path);
+  const double length = work.length();
+  const auto wanted = static_cast<std::size_t>(std::ceil(length / options.waypoint_spacing)) + 1;
+  const std::size_t count = std::min<std::size_t>(
+      std::max(wanted, work.getStateCount()),
+      std::max<std::size_t>(work.getStateCount(), static_cast<std::size_t>(options.max_waypoints)));
+  work.interpolate(static_cast<unsigned>(count));
+
+  Optimizer optimizer(si, validity, options, *objective);
+  optimizer.load(work);
+  Waypoints certified = optimizer.waypoints();
+  og::PathSimplifier simplifier(si, ob::GoalPtr(), objective);
+  // The interpolated input: its motions are parts of the input's, certified as those are.
+  while (Clock::now() < deadline) {
+    const int moves = optimizer.round(deadline);
+    ++result.rounds;
+    if (moves == 0) break;
+    optimizer.certify(certified);
+    result.moves += moves;
+    certified = optimizer.waypoints();
+  }
+  optimizer.store(work);
+  if (Clock::now() < deadline && shortcut(simplifier, work)) ++result.shortcuts;
+
+  // The contract, checked on the result itself: every motion passes, and the objective's cost
+  // is no higher than the input's.
+  if (work.cost(objective).value() <= result.cost_before && all_motions_pass(si, work)) {
+    path = work;
+    result.changed = true;
+  }
+  return finish(path);
+}
+
+}  // namespace hullcheck
