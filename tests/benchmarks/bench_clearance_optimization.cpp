@@ -314,6 +314,28 @@ void summarize(const std::vector<std::string>& files, const std::string& table,
       md << buf;
     }
   }
+  // Problem by problem against the peers, where they solved.
+  md << "\n| robot | peer | problems the peer solved | optimized clearance >= the peer's | "
+        "optimized path shorter |\n|---|---|---|---|---|\n";
+  for (const auto& [robot, list] : rows) {
+    for (const auto& [p, label] : {std::pair<std::string, const char*>{"rrtstar", "RRT*"},
+                                   std::pair<std::string, const char*>{"bitstar", "BIT*"}}) {
+      int both = 0, clearer = 0, shorter = 0;
+      for (const auto& r : list) {
+        if (r.at(p + "_solved") == 0.0 || r.at("optimized_solved") == 0.0) continue;
+        ++both;
+        clearer += r.at("optimized_middle_obstacle_clearance") >=
+                           r.at(p + "_middle_obstacle_clearance")
+                       ? 1
+                       : 0;
+        shorter += r.at("optimized_length") < r.at(p + "_length") ? 1 : 0;
+      }
+      char buf[256];
+      std::snprintf(buf, sizeof buf, "| %s | %s | %d | %d | %d |\n", robot.c_str(), label, both,
+                    clearer, shorter);
+      md << buf;
+    }
+  }
   std::cout << md.str();
   if (!table.empty()) {
     std::ofstream t(table);
