@@ -183,7 +183,8 @@ void write_html_viewer(const std::string& file, const std::string& title, const 
   }
   e << YAML::EndSeq;
   std::vector<Eigen::Isometry3d> poses;
-  for (const auto& [name, path] : {std::pair{"frames", &configurations}, std::pair{"before", &before}}) {
+  for (const auto& [name, path] :
+       {std::pair{"frames", &configurations}, std::pair{"before", &before}}) {
     key(e, name);
     e << YAML::BeginSeq;
     for (const Eigen::VectorXd& q : *path) {

@@ -42,7 +42,8 @@ std::shared_ptr<const PairScope> OptimizationOptions::make_scope(
   if (scope == "self") {
     return std::make_shared<const PairScope>(checker.pair_scope(ClearanceScope::kSelf));
   }
-  return std::make_shared<const PairScope>(optimization_scope(checker, variables, fixed, settings.margin));
+  return std::make_shared<const PairScope>(
+      optimization_scope(checker, variables, fixed, settings.margin));
 }
 
 std::vector<ClearanceSample> clearance_profile(const PlanningSetup& planning,

@@ -67,10 +67,11 @@ void run(const PlanSettings& s) {
       s.optimization.make_scope(*world.checker, variables, start);
   planning.validity->set_clearance_scope(scope);
   if (scope && s.optimization.scope == "auto") {
-    std::printf("clearance scope auto: obstacles and %zu of %zu self pairs (those the group can take "
-                "within %g m and clear of it)\n",
-                scope->self_link_pairs().size(), world.checker->checked_link_pairs().size(),
-                s.optimization.settings.margin);
+    std::printf(
+        "clearance scope auto: obstacles and %zu of %zu self pairs (those the group can take "
+        "within %g m and clear of it)\n",
+        scope->self_link_pairs().size(), world.checker->checked_link_pairs().size(),
+        s.optimization.settings.margin);
   }
   ss.setStartAndGoalStates(planning.state(start), planning.state(goal));
   ss.setOptimizationObjective(make_objective(s.objective, si));
@@ -186,12 +187,12 @@ void run(const PlanSettings& s) {
       }
       return frames;
     };
-    write_html_viewer(s.viewer,
-                      "hullcheck plan: " + world.model->name() +
-                          (s.optimization.enabled() ? " (grey: before optimization)" : ""),
-                      *world.model, world.checker->scene(), frames_of(path),
-                      s.optimization.enabled() ? frames_of(before)
-                                               : std::vector<Eigen::VectorXd>{});
+    write_html_viewer(
+        s.viewer,
+        "hullcheck plan: " + world.model->name() +
+            (s.optimization.enabled() ? " (grey: before optimization)" : ""),
+        *world.model, world.checker->scene(), frames_of(path),
+        s.optimization.enabled() ? frames_of(before) : std::vector<Eigen::VectorXd>{});
     std::printf("viewer written to %s\n", s.viewer.c_str());
   }
 }

@@ -228,8 +228,7 @@ class Optimizer {
 };
 
 // Minimum of the validity checker's (scoped) clearance over the path's states.
-double min_waypoint_clearance(const StateValidityChecker& validity,
-                              const og::PathGeometric& path) {
+double min_waypoint_clearance(const StateValidityChecker& validity, const og::PathGeometric& path) {
   double m = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < path.getStateCount(); ++i) {
     m = std::min(m, validity.clearance(path.getState(i)));
@@ -262,15 +261,14 @@ ClearanceOptimizationResult optimize_clearance(const ob::SpaceInformationPtr& si
                                                og::PathGeometric& path,
                                                const ClearanceOptimizationOptions& options) {
   check_options(options);
-  if (!si || path.getSpaceInformation() != si ||
-      si->getStateValidityChecker().get() != &validity) {
+  if (!si || path.getSpaceInformation() != si || si->getStateValidityChecker().get() != &validity) {
     throw InputError(
         "optimize_clearance: the path and the validity checker must belong to the space "
         "information given");
   }
   const Clock::time_point start = Clock::now();
-  const Clock::time_point deadline =
-      start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.time));
+  const Clock::time_point deadline = start + std::chrono::duration_cast<Clock::duration>(
+                                                 std::chrono::duration<double>(options.time));
   const auto objective =
       std::make_shared<ClearanceMarginObjective>(si, options.margin, options.length_weight);
   ClearanceOptimizationResult result;

@@ -28,8 +28,8 @@ ob::Cost ClearanceCostObjective::stateCost(const ob::State* s) const {
   return ob::Cost(std::isfinite(d) ? std::exp(-d / scale_) : 0.0);
 }
 
-ClearanceMarginObjective::ClearanceMarginObjective(const ob::SpaceInformationPtr& si,
-                                                   double margin, double length_weight)
+ClearanceMarginObjective::ClearanceMarginObjective(const ob::SpaceInformationPtr& si, double margin,
+                                                   double length_weight)
     : ob::StateCostIntegralObjective(si, /*enableMotionCostInterpolation=*/true),
       margin_(margin),
       length_weight_(length_weight) {

@@ -12,8 +12,7 @@ namespace hullcheck {
 
 std::vector<std::pair<int, int>> approaching_self_pairs(const CollisionChecker& checker,
                                                         const std::vector<int>& variables,
-                                                        const Eigen::VectorXd& fixed,
-                                                        double margin,
+                                                        const Eigen::VectorXd& fixed, double margin,
                                                         const SelfPairSampling& options) {
   const RobotModel& model = checker.model();
   if (options.samples < 1 || !(margin > 0.0) || !std::isfinite(margin)) {
@@ -24,8 +23,8 @@ std::vector<std::pair<int, int>> approaching_self_pairs(const CollisionChecker& 
   for (int v : variables) {
     if (v < 0 || v >= model.variable_count()) {
       throw InputError("approaching_self_pairs: variable index " + std::to_string(v) +
-                       " is out of range (the model has " +
-                       std::to_string(model.variable_count()) + " values)");
+                       " is out of range (the model has " + std::to_string(model.variable_count()) +
+                       " values)");
     }
   }
   const std::vector<std::pair<int, int>> checked = checker.checked_link_pairs();
@@ -64,7 +63,8 @@ std::vector<std::pair<int, int>> approaching_self_pairs(const CollisionChecker& 
 PairScope optimization_scope(const CollisionChecker& checker, const std::vector<int>& variables,
                              const Eigen::VectorXd& fixed, double margin,
                              const SelfPairSampling& options) {
-  return checker.pair_scope(true, approaching_self_pairs(checker, variables, fixed, margin, options));
+  return checker.pair_scope(true,
+                            approaching_self_pairs(checker, variables, fixed, margin, options));
 }
 
 }  // namespace hullcheck

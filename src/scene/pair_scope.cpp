@@ -6,8 +6,8 @@
 
 namespace hullcheck {
 
-PairScope CollisionChecker::pair_scope(bool obstacles,
-                                       const std::vector<std::pair<int, int>>& self_link_pairs) const {
+PairScope CollisionChecker::pair_scope(
+    bool obstacles, const std::vector<std::pair<int, int>>& self_link_pairs) const {
   PairScope scope;
   scope.obstacles_ = obstacles;
   scope.model_ = model_.get();
@@ -18,8 +18,9 @@ PairScope CollisionChecker::pair_scope(bool obstacles,
     const auto it = std::find(checked.begin(), checked.end(), key);
     if (it == checked.end()) {
       const auto name = [&](int link) {
-        return link >= 0 && link < static_cast<int>(model_->links().size()) ? "'" + model_->link(link).name + "'"
-                                                        : "index " + std::to_string(link);
+        return link >= 0 && link < static_cast<int>(model_->links().size())
+                   ? "'" + model_->link(link).name + "'"
+                   : "index " + std::to_string(link);
       };
       throw InputError("pair_scope: links " + name(x) + " and " + name(y) +
                        " are not a checked self pair (allowed to touch, without geometry, or "
@@ -34,8 +35,8 @@ PairScope CollisionChecker::pair_scope(bool obstacles,
 }
 
 PairScope CollisionChecker::pair_scope(ClearanceScope scope) const {
-  return pair_scope(scope != ClearanceScope::kSelf,
-                    scope == ClearanceScope::kObstacles ? std::vector<std::pair<int, int>>{}
+  return pair_scope(scope != ClearanceScope::kSelf, scope == ClearanceScope::kObstacles
+                                                        ? std::vector<std::pair<int, int>>{}
                                                         : checked_link_pairs());
 }
 

@@ -198,7 +198,8 @@ void run(const RunOptions& o) {
     auto scope = std::make_shared<const hullcheck::PairScope>(
         hullcheck::optimization_scope(*checker, variables, request.start, o.optimize.margin));
     setup.validity->set_clearance_scope(scope);
-    const hullcheck::PairScope obstacles = checker->pair_scope(hullcheck::ClearanceScope::kObstacles);
+    const hullcheck::PairScope obstacles =
+        checker->pair_scope(hullcheck::ClearanceScope::kObstacles);
     og::SimpleSetup& ss = *setup.setup;
     ss.setStartAndGoalStates(setup.state(request.start), setup.state(request.goal));
     const auto si = ss.getSpaceInformation();
@@ -224,8 +225,8 @@ void run(const RunOptions& o) {
                         budget, false, obstacles, seed);
       }
     }
-    out << model->name() << ',' << problem.name << ','
-        << checker->checked_link_pairs().size() << ',' << scope->self_link_pairs().size();
+    out << model->name() << ',' << problem.name << ',' << checker->checked_link_pairs().size()
+        << ',' << scope->self_link_pairs().size();
     write(out, rrtc);
     write(out, optimized);
     write(out, peers[0]);
@@ -324,10 +325,10 @@ void summarize(const std::vector<std::string>& files, const std::string& table,
       for (const auto& r : list) {
         if (r.at(p + "_solved") == 0.0 || r.at("optimized_solved") == 0.0) continue;
         ++both;
-        clearer += r.at("optimized_middle_obstacle_clearance") >=
-                           r.at(p + "_middle_obstacle_clearance")
-                       ? 1
-                       : 0;
+        clearer +=
+            r.at("optimized_middle_obstacle_clearance") >= r.at(p + "_middle_obstacle_clearance")
+                ? 1
+                : 0;
         shorter += r.at("optimized_length") < r.at(p + "_length") ? 1 : 0;
       }
       char buf[256];

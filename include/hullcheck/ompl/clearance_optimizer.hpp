@@ -3,7 +3,6 @@
 // certified.
 #pragma once
 
-#include <ompl/base/Goal.h>
 #include <ompl/geometric/PathGeometric.h>
 
 #include <hullcheck/ompl/state_validity_checker.hpp>
@@ -29,7 +28,7 @@ struct ClearanceOptimizationOptions {
 
 /// What optimize_clearance did. Costs are ClearanceMarginObjective's (margin and length weight
 /// of the options, clearance of the validity checker's scope); clearances, m, are the scope's
-/// minimum over the path's waypoints and the states its cost integral samples.
+/// minimum over the path's waypoints as given (before) and as returned (after).
 struct ClearanceOptimizationResult {
   double cost_before = 0.0, cost_after = 0.0;
   double length_before = 0.0, length_after = 0.0;  ///< Joint-space path length.
@@ -57,7 +56,7 @@ struct ClearanceOptimizationResult {
 /// the path. A round whose motions do not all pass is discarded. The result replaces `path`
 /// only when every motion of it passed and its objective cost (path.cost of the objective)
 /// is no higher than the input's: the path returned is never worse on the objective, and
-/// never uncertified when it changed. `goal` (may be null) is unused but for shortcutting.
+/// never uncertified when it changed.
 /// Allocates; thread-safe as the space information's checkers are. Throws InputError on bad
 /// options or a path of another space.
 ClearanceOptimizationResult optimize_clearance(const ::ompl::base::SpaceInformationPtr& si,

@@ -31,8 +31,7 @@ struct SelfPairSampling {
 /// variable index, configuration, margin (finite, > 0) or option.
 std::vector<std::pair<int, int>> approaching_self_pairs(const CollisionChecker& checker,
                                                         const std::vector<int>& variables,
-                                                        const Eigen::VectorXd& fixed,
-                                                        double margin,
+                                                        const Eigen::VectorXd& fixed, double margin,
                                                         const SelfPairSampling& options = {});
 
 /// The default scope of clearance optimization with a hinge at `margin`: every robot-obstacle

@@ -97,7 +97,8 @@ class CollisionChecker {
   /// A PairScope of this checker: robot-obstacle pairs when `obstacles`, and the checked self
   /// link pairs listed (model link indices, either order). Throws InputError naming a listed
   /// pair that is not a checked link pair (checked_link_pairs()).
-  PairScope pair_scope(bool obstacles, const std::vector<std::pair<int, int>>& self_link_pairs) const;
+  PairScope pair_scope(bool obstacles,
+                       const std::vector<std::pair<int, int>>& self_link_pairs) const;
   /// The PairScope holding the pairs of `scope`.
   PairScope pair_scope(ClearanceScope scope) const;
   /// is_valid for many configurations: the columns of `configurations` (variable_count() rows),
