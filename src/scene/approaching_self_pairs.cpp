@@ -1,5 +1,5 @@
-// approaching_self_pairs: the self link pairs a planning group's motion can take both within a
-// margin and clear of it, measured over sampled configurations.
+// approaching_self_pairs: the self link pairs a planning group's motion moves and can take
+// clear of a margin, measured over sampled configurations.
 #include <algorithm>
 #include <cmath>
 #include <hullcheck/core/errors.hpp>
@@ -53,9 +53,12 @@ std::vector<std::pair<int, int>> approaching_self_pairs(const CollisionChecker& 
       high[k] = std::max(high[k], d);
     }
   }
+  // A pair none of the values moves keeps one distance (to the rounding of forward
+  // kinematics); one never clear of the margin is held close by the robot's design.
   std::vector<std::pair<int, int>> moving;
   for (std::size_t k = 0; k < checked.size(); ++k) {
-    if (low[k] < margin && high[k] > margin) moving.push_back(checked[k]);
+    if (high[k] > margin && high[k] - low[k] > 1e-9 * std::max(1.0, std::abs(high[k])))
+      moving.push_back(checked[k]);
   }
   return moving;
 }

@@ -1,5 +1,5 @@
-// Which of the robot's own link pairs a planning group's motion can take both within a
-// clearance margin and clear of it: the self pairs worth optimising clearance over.
+// Which of the robot's own link pairs a planning group's motion moves and can take clear of a
+// clearance margin: the self pairs worth optimising clearance over.
 #pragma once
 
 #include <Eigen/Core>
@@ -17,18 +17,20 @@ struct SelfPairSampling {
 };
 
 /// The checked self link pairs (model link indices, a < b, in checked_link_pairs() order) that
-/// the configuration values `variables` can bring within `margin` (m) of each other and also
-/// take clear of it: the pair's signed distance is below the margin in some and above it in
-/// other configurations among `fixed` and options.samples configurations with those values
-/// drawn uniformly between their limits (a continuous joint over one turn), the others as in
-/// `fixed`. Left out are pairs that never come within the margin (a hinge at the margin never
-/// acts on them) and pairs that never get clear of it: links held close by the robot's design
-/// (a wrist over its forearm, two links turning about a common axis), whose hinge would only
-/// tax path length, and pairs that no listed value moves relative to each other. The decision
-/// is sampled: it chooses which clearance to optimise and report, never what is valid
-/// (validity always checks every pair). Deterministic for a seed; cost: samples x checked
-/// pairs clearance queries (milliseconds for a 7-joint arm). Throws InputError on a bad
-/// variable index, configuration, margin (finite, > 0) or option.
+/// the configuration values `variables` move relative to each other and can take clear of
+/// `margin` (m): the pair's signed distance varies, and exceeds the margin somewhere, over
+/// `fixed` and options.samples configurations with those values drawn uniformly between their
+/// limits (a continuous joint over one turn), the others as in `fixed`. Left out are pairs that
+/// never get clear of the margin: links held close by the robot's design (a wrist over its
+/// forearm, two links turning about a common axis), whose hinge would only tax path length
+/// without ever being satisfied; and pairs that no listed value moves (a constant distance,
+/// which no path can change). Pairs that rarely come near are kept: a hinge at the margin
+/// costs nothing while they stay clear of it. The decision is sampled (a pair clear of the
+/// margin only in configurations the samples miss is left out): it chooses which clearance to
+/// optimise and report, never what is valid (validity always checks every pair).
+/// Deterministic for a seed; cost: samples x checked pairs clearance queries (milliseconds for
+/// a 7-joint arm). Throws InputError on a bad variable index, configuration, margin (finite,
+/// > 0) or option.
 std::vector<std::pair<int, int>> approaching_self_pairs(const CollisionChecker& checker,
                                                         const std::vector<int>& variables,
                                                         const Eigen::VectorXd& fixed, double margin,
