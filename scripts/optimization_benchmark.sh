@@ -62,12 +62,13 @@ Command: \`scripts/optimization_benchmark.sh --time $time_limit --jobs $jobs$( (
 $(nproc) cores, $(date -u +%Y-%m-%d). The whole run took $elapsed s ($jobs process(es)).
 
 Every planner checks motions with the guaranteed (certified) validator; the clearance scope is \
-optimization_scope at the margin (0.05 m): obstacles and the self pairs the group can take \
-within it and clear of it. Clearance is the minimum obstacle clearance over the middle 80% of \
+optimization_scope at the margin (0.05 m): obstacles and the self pairs the group moves and \
+can take clear of it. Clearance is the minimum obstacle clearance over the middle 80% of \
 the path (201 states evenly spaced in arc length from 10% to 90%). The optimizer runs with its \
 defaults (margin 0.05 m, length weight 0.1, budget 0.1 s) on the RRTConnect + simplify path; \
 its time is its own. RRT* and BIT* get, per problem, the time RRTConnect, the simplifier and \
 the optimizer took together; they optimise OMPL's MaximizeMinClearanceObjective on the same \
 scoped clearance; an unsolved run counts as not solved. Ratios are medians of per-problem \
-ratios against RRTConnect + simplify on the same problem."
+ratios against RRTConnect + simplify on the same problem. The second table compares, problem by \
+problem, the optimized path with each peer's where the peer solved."
 echo "optimization benchmark: $elapsed s; tables in tests/benchmarks/results/optimization.md"

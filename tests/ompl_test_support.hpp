@@ -3,6 +3,8 @@
 #pragma once
 
 #include <ompl/base/SpaceInformation.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
 #include <cmath>
@@ -36,6 +38,16 @@ constexpr bool kSanitized = false;
 
 /// `normal` in an optimised build, `sanitized` under a sanitizer.
 inline int scaled(int normal, int sanitized) { return kSanitized ? sanitized : normal; }
+
+/// OMPL draws every generator's seed from one global sequence; setting its seed again restarts
+/// that sequence (OMPL logs an error that it may not be deterministic: it is, for generators
+/// created afterwards, so the message is silenced).
+inline void reseed_ompl(std::uint_fast32_t seed) {
+  const ::ompl::msg::LogLevel level = ::ompl::msg::getLogLevel();
+  ::ompl::msg::setLogLevel(::ompl::msg::LOG_NONE);
+  ::ompl::RNG::setSeed(seed);
+  ::ompl::msg::setLogLevel(level);
+}
 
 /// A robot model with its SRDF (empty when the robot has none).
 struct LoadedRobot {

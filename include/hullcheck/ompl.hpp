@@ -7,7 +7,7 @@
 #include <hullcheck/ompl/joint_state_space.hpp>
 #include <hullcheck/ompl/motion_validator.hpp>
 #include <hullcheck/ompl/objectives.hpp>
-#include <hullcheck/ompl/path_optimization.hpp>
+#include <hullcheck/ompl/path_simplification.hpp>
 #include <hullcheck/ompl/planning_setup.hpp>
 #include <hullcheck/ompl/state_validity_checker.hpp>
 #include <hullcheck/scene.hpp>

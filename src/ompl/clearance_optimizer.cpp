@@ -15,7 +15,6 @@
 // grad d is clearance_gradient's: the closest pair's witness points held on their links.
 // Moving one waypoint at a time (Gauss-Seidel) and keeping a move only when f_i falls, F falls
 // with every kept move.
-#include <ompl/config.h>
 #include <ompl/geometric/PathSimplifier.h>
 
 #include <algorithm>
@@ -28,6 +27,8 @@
 #include <limits>
 #include <memory>
 #include <vector>
+
+#include "detail/shortcut_path.hpp"
 
 namespace hullcheck {
 
@@ -244,16 +245,6 @@ bool all_motions_pass(const ob::SpaceInformationPtr& si, const og::PathGeometric
   return true;
 }
 
-// One pass of OMPL's shortcuts under the objective (OMPL 1.7 renamed shortcutPath).
-bool shortcut(og::PathSimplifier& simplifier, og::PathGeometric& path) {
-  const unsigned attempts = static_cast<unsigned>(std::min<std::size_t>(path.getStateCount(), 16));
-#if OMPL_VERSION_VALUE >= 1007000
-  return simplifier.partialShortcutPath(path, attempts, attempts);
-#else
-  return simplifier.shortcutPath(path, attempts, attempts);
-#endif
-}
-
 }  // namespace
 
 ClearanceOptimizationResult optimize_clearance(const ob::SpaceInformationPtr& si,
@@ -306,7 +297,11 @@ ClearanceOptimizationResult optimize_clearance(const ob::SpaceInformationPtr& si
     certified = optimizer.waypoints();
   }
   optimizer.store(work);
-  if (Clock::now() < deadline && shortcut(simplifier, work)) ++result.shortcuts;
+  // One pass of shortcuts: as many attempts as waypoints, up to 16.
+  const auto attempts = static_cast<unsigned>(std::min<std::size_t>(work.getStateCount(), 16));
+  if (Clock::now() < deadline && detail::shortcut_path(simplifier, work, attempts, attempts)) {
+    ++result.shortcuts;
+  }
 
   // The contract, checked on the result itself: every motion passes, and the objective's cost
   // is no higher than the input's.

@@ -264,8 +264,9 @@ py::dict validate(const Checker& checker, py::handle path, double min_clearance,
   return path;
 }
 
-py::dict optimize_clearance(const Checker& checker, py::handle path, py::handle joints, double time,
-                            double target_clearance) {
+py::dict optimize_clearance(const Checker& checker, py::handle path, py::handle joints,
+                            double margin, double length_weight, double time,
+                            const std::string& scope_name) {
   if (!checker) throw InputError("checker: expected a CollisionChecker, got None");
   const RobotModel& model = checker->model();
   const Configurations c = configurations(path, "path", model.variable_count());
@@ -273,23 +274,35 @@ py::dict optimize_clearance(const Checker& checker, py::handle path, py::handle 
     throw InputError("path: expected shape (K, " + std::to_string(c.dof) + ") with K >= 2, got " +
                      shape_text(c.array));
   }
-  if (!(time >= 0.0) || !std::isfinite(time)) {
-    throw InputError("time: expected a finite number of seconds >= 0, got " + std::to_string(time));
-  }
-  if (!(target_clearance > 0.0) || !std::isfinite(target_clearance)) {
-    throw InputError("target_clearance: expected a finite distance > 0 m, got " +
-                     std::to_string(target_clearance));
-  }
+  ClearanceOptimizationOptions options;
+  options.margin = margin;
+  options.length_weight = length_weight;
+  options.time = time;
   const std::vector<int> variables = planned_variables(model, joints);
   PlanningSetup planning = make_planning_setup(checker, variables, c.row(0));
   const auto si = planning.setup->getSpaceInformation();
   si->setup();
   ::ompl::geometric::PathGeometric ompl_path = to_ompl_path(planning, c, variables);
   std::vector<Eigen::VectorXd> states;
-  PushResult push;
-  double length_before = ompl_path.length();
+  ClearanceOptimizationResult result;
+  std::size_t scope_pairs = 0;
+  if (scope_name != "auto" && scope_name != "all" && scope_name != "obstacles" &&
+      scope_name != "self") {
+    throw InputError("scope: expected 'auto', 'all', 'obstacles' or 'self', got '" + scope_name +
+                     "'");
+  }
+  if (!(margin > 0.0) || !std::isfinite(margin)) {
+    throw InputError("margin: expected a finite distance > 0 m, got " + std::to_string(margin));
+  }
   {
     py::gil_scoped_release release;
+    // Obstacles and the self pairs the joints can move and clear of the margin, or a fixed
+    // scope by name.
+    auto scope = std::make_shared<PairScope>(
+        scope_name == "auto" ? optimization_scope(*checker, variables, c.row(0), margin)
+                             : checker->pair_scope(clearance_scope(scope_name)));
+    scope_pairs = scope->self_link_pairs().size();
+    planning.validity->set_clearance_scope(scope);
     // The optimizer keeps a valid path valid: it must start from one.
     const std::size_t count = ompl_path.getStateCount();
     for (std::size_t i = 0; i < count; ++i) {
@@ -304,24 +317,24 @@ py::dict optimize_clearance(const Checker& checker, py::handle path, py::handle 
                                    : "waypoint " + std::to_string(i) + " is in collision") +
                        "; optimize_clearance takes a valid path (see validate)");
     }
-    // As plan_example.cpp: shortcuts kept only when length + clearance cost does not grow, then
-    // interior waypoints pushed along the clearance gradient, every move certified.
-    simplify_with_objective(si, ompl_path, make_length_clearance_objective(si, 1.0, 1.0), time);
-    ompl_path.interpolate(std::max<unsigned>(static_cast<unsigned>(ompl_path.getStateCount()), 20));
-    PushOptions options;
-    options.target_clearance = target_clearance;
-    push = push_away_from_obstacles(si, *planning.validity, ompl_path, options);
+    result = hullcheck::optimize_clearance(si, *planning.validity, ompl_path, options);
     for (std::size_t i = 0; i < ompl_path.getStateCount(); ++i) {
       states.push_back(planning.configuration(ompl_path.getState(i)));
     }
   }
   py::dict d;
   d["path"] = rows(states, c.dof);
-  d["length_before"] = length_before;
-  d["length"] = ompl_path.length();
-  d["min_clearance_before"] = push.min_clearance_before;
-  d["min_clearance"] = push.min_clearance_after;
-  d["moves"] = push.moves;
+  d["changed"] = result.changed;
+  d["cost_before"] = result.cost_before;
+  d["cost"] = result.cost_after;
+  d["length_before"] = result.length_before;
+  d["length"] = result.length_after;
+  d["min_clearance_before"] = result.min_clearance_before;
+  d["min_clearance"] = result.min_clearance_after;
+  d["self_pairs"] = scope_pairs;
+  d["rounds"] = result.rounds;
+  d["moves"] = result.moves;
+  d["seconds"] = result.seconds;
   return d;
 }
 
@@ -358,19 +371,25 @@ pair's names 'name_a', 'name_b' (lists), 'obstacle_clearance' and 'self_clearanc
 minimum over robot-obstacle pairs and over self pairs; inf without any), 'motion_free' (K-1,) bool and 'contact' (K-1,): the
 fraction of each motion at its first contact (1.0 when free).)");
   m.def("optimize_clearance", &optimize_clearance, py::arg("checker"), py::arg("path"),
-        py::arg("joints") = py::none(), py::arg("time") = 1.0,
-        py::arg("target_clearance") = PushOptions{}.target_clearance,
-        R"(Optimizes a valid path (K >= 2, dof) of full configurations for clearance, as
-plan_example.cpp does: OMPL shortcuts kept only when length + clearance cost does not grow (up
-to `time` s), the path interpolated to at least 20 waypoints, then each interior waypoint pushed
-along the clearance gradient of its closest pair while that raises its clearance (up to
-target_clearance, m) and both adjacent motions stay certified. Start and goal never move;
-joints: the joints that may move (None: every active joint). InputError when the path is not
-valid. The GIL is released.
+        py::arg("joints") = py::none(), py::arg("margin") = ClearanceOptimizationOptions{}.margin,
+        py::arg("length_weight") = ClearanceOptimizationOptions{}.length_weight,
+        py::arg("time") = ClearanceOptimizationOptions{}.time, py::arg("scope") = "auto",
+        R"(Optimizes a valid path (K >= 2, dof) of full configurations for clearance with
+hullcheck's optimizer (C++ optimize_clearance): the cost is the path's joint-space length times
+length_weight plus, along the path, max(0, margin - d) / margin for the clearance d (m) over the
+scope's pairs; waypoints move along exact signed-distance gradients, interleaved with shortcuts,
+every motion certified. The result is never costlier than the input and never uncertified; start
+and goal never move. joints: the joints that may move (None: every active joint; a joint not
+listed must hold one value along the path). margin: m, > 0. length_weight: >= 0. time: s, the
+budget (the optimizer stops earlier when a round changes nothing). scope: 'auto' (obstacles and
+the self pairs those joints move and can take clear of the margin, approaching_self_pairs),
+'all', 'obstacles' or 'self'. InputError when the path is not valid or an option is bad. The GIL
+is released.
 
-Returns a dict: 'path' (K', dof), 'length_before' and 'length' (joint-space),
-'min_clearance_before' and 'min_clearance' (m, over the waypoints before and after the push),
-'moves' (accepted waypoint moves).)");
+Returns a dict: 'path' (K', dof), 'changed' (bool: False when the input is returned), 'cost_before'
+and 'cost', 'length_before' and 'length' (joint-space), 'min_clearance_before' and
+'min_clearance' (m, the scope's minimum over the waypoints), 'self_pairs' (self link pairs in
+the scope), 'rounds', 'moves' (accepted waypoint moves), 'seconds'.)");
 }
 
 }  // namespace hullcheck::python

@@ -80,22 +80,7 @@ double expect_path_valid(const PlanningSetup& setup, const og::PathGeometric& pa
   return min_clearance;
 }
 
-// OMPL draws every generator's seed from one global sequence; setting its seed again restarts
-// that sequence (OMPL logs an error that it may not be deterministic: it is, for generators
-// created afterwards).
-void reseed_ompl(std::uint_fast32_t seed) {
-  const ::ompl::msg::LogLevel level = ::ompl::msg::getLogLevel();
-  ::ompl::msg::setLogLevel(::ompl::msg::LOG_NONE);
-  ::ompl::RNG::setSeed(seed);
-  ::ompl::msg::setLogLevel(level);
-}
-
-double min_waypoint_clearance(const StateValidityChecker& v, const og::PathGeometric& path) {
-  double m = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < path.getStateCount(); ++i)
-    m = std::min(m, v.clearance(path.getState(i)));
-  return m;
-}
+using test::reseed_ompl;
 
 // ---------------------------------------------------------------------------- MBM problems
 
@@ -428,48 +413,6 @@ TEST_F(OwnArmPlanning, SimplifyWithObjectiveDoesNotWorsenItsCost) {
                   c.scale, before.value(), after.value(), states_before, path.getStateCount());
     }
   }
-}
-
-TEST_F(OwnArmPlanning, PushAwayKeepsPathValidAndRaisesClearance) {
-  EXPECT_THROW(
-      {
-        og::PathGeometric p(setup_.setup->getSpaceInformation());
-        PushOptions bad;
-        bad.step = 0.0;
-        push_away_from_obstacles(setup_.setup->getSpaceInformation(), *setup_.validity, p, bad);
-      },
-      InputError);
-  int total_moves = 0;
-  for (int round = 0; round < test::scaled(4, 2); ++round) {
-    // Self pairs checked, then the robot against the obstacles only.
-    if (round == test::scaled(2, 1)) obstacles_only();
-    const ob::SpaceInformationPtr si = setup_.setup->getSpaceInformation();
-    og::PathGeometric path = plan();
-    simplify_with_objective(si, path, make_length_clearance_objective(si, 1.0, 1.0), 0.3);
-    path.interpolate(std::max<unsigned>(path.getStateCount(), 20));
-    const og::PathGeometric original = path;
-    const double before = min_waypoint_clearance(*setup_.validity, path);
-    const PushResult result = push_away_from_obstacles(si, *setup_.validity, path);
-    const double after = min_waypoint_clearance(*setup_.validity, path);
-    EXPECT_EQ(result.min_clearance_before, before);
-    EXPECT_EQ(result.min_clearance_after, after);
-    EXPECT_GE(after, before);
-    ASSERT_EQ(path.getStateCount(), original.getStateCount());
-    EXPECT_TRUE(si->equalStates(path.getState(0), original.getState(0)));
-    EXPECT_TRUE(si->equalStates(path.getState(path.getStateCount() - 1),
-                                original.getState(original.getStateCount() - 1)));
-    // No waypoint got closer to anything.
-    for (std::size_t i = 0; i < path.getStateCount(); ++i) {
-      EXPECT_GE(setup_.validity->clearance(path.getState(i)),
-                setup_.validity->clearance(original.getState(i)))
-          << "waypoint " << i;
-    }
-    expect_path_valid(setup_, path);
-    total_moves += result.moves;
-    std::printf("[push] min waypoint clearance %.4f -> %.4f m, %d moves\n", before, after,
-                result.moves);
-  }
-  EXPECT_GT(total_moves, 0);
 }
 
 // ---------------------------------------------------------------------------- threads
