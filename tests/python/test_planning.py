@@ -130,3 +130,49 @@ def test_mbm_panda_paths_validate(mbm_panda):
             solved += 1
             assert hc.validate(checker, r["path"])["valid"]
     assert solved >= 2
+
+
+def test_optimize_clearance_buys_obstacle_clearance(checker, problem):
+    left, right, group = problem
+    r = hc.plan(checker, left, right, joints=group, time=10.0, simplify=True)
+    assert r["solved"]
+    before = hc.validate(checker, r["path"])
+    for scope in ("auto", "all", "obstacles"):
+        o = hc.optimize_clearance(checker, r["path"], joints=group, margin=0.05, scope=scope)
+        assert o["cost"] <= o["cost_before"]
+        assert o["length_before"] == pytest.approx(r["length"], rel=1e-9)
+        path = o["path"]
+        np.testing.assert_array_equal(path[0], left)
+        np.testing.assert_allclose(path[-1], right, atol=1e-12)
+        np.testing.assert_array_equal(path[:, 7], left[7])
+        v = hc.validate(checker, path)
+        assert v["valid"]  # every motion certified again, independently of the optimizer
+        if not o["changed"]:
+            np.testing.assert_array_equal(path, r["path"])
+    # The obstacle scope: the path's closest waypoint to an obstacle is no closer than before,
+    # unless it already kept the margin.
+    o = hc.optimize_clearance(checker, r["path"], joints=group, scope="obstacles")
+    after = hc.validate(checker, o["path"])
+    assert o["self_pairs"] == 0
+    assert after["obstacle_clearance"][1:-1].min() >= min(
+        before["obstacle_clearance"][1:-1].min(), 0.05) - 1e-9 or not o["changed"]
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"scope": "everything"}, "scope: expected 'auto'"),
+    ({"margin": 0.0}, "margin"),
+    ({"margin": float("nan")}, "margin"),
+    ({"length_weight": -1.0}, "length_weight"),
+    ({"time": 0.0}, "time"),
+])
+def test_optimize_clearance_errors(checker, problem, kwargs, message):
+    left, right, group = problem
+    path = np.array([left, left])
+    with pytest.raises(hc.InputError, match=message):
+        hc.optimize_clearance(checker, path, joints=group, **kwargs)
+
+
+def test_optimize_clearance_rejects_an_invalid_path(checker, problem):
+    left, right, group = problem
+    with pytest.raises(hc.InputError, match="is not free"):
+        hc.optimize_clearance(checker, np.array([left, right]), joints=group)
