@@ -66,8 +66,8 @@ double middle_obstacle_clearance(const Problem& p, const og::PathGeometric& path
   dense.interpolate(201);
   double m = std::numeric_limits<double>::infinity();
   for (std::size_t i = 20; i <= 180; ++i) {
-    m = std::min(m, p.checker->clearance(p.setup.configuration(dense.getState(i)), *p.obstacles)
-                        .distance);
+    m = std::min(
+        m, p.checker->clearance(p.setup.configuration(dense.getState(i)), *p.obstacles).distance);
   }
   return m;
 }
@@ -245,9 +245,8 @@ TEST_F(OwnArm, DemoProblemGainsObstacleClearance) {
     p_.setup.setup->getPathSimplifier()->simplifyMax(path);
     const og::PathGeometric input(path);
     SCOPED_TRACE("seed " + std::to_string(seed));
-    const ClearanceOptimizationResult r =
-        optimize_clearance(p_.setup.setup->getSpaceInformation(), *p_.setup.validity, path,
-                           options);
+    const ClearanceOptimizationResult r = optimize_clearance(p_.setup.setup->getSpaceInformation(),
+                                                             *p_.setup.validity, path, options);
     expect_contract(p_, input, path, r, options);
     const double before = middle_obstacle_clearance(p_, input);
     const double after = middle_obstacle_clearance(p_, path);
@@ -342,8 +341,9 @@ TEST(MbmClearanceOptimizer, PandaProblemsKeepTheContract) {
     expect_contract(p, input, path, r, options);
     const double before = middle_obstacle_clearance(p, input);
     const double after = middle_obstacle_clearance(p, path);
-    std::printf("[panda %s] middle obstacle clearance %.4f -> %.4f m, length %.3f -> %.3f, %.1f ms\n",
-                family.c_str(), before, after, r.length_before, r.length_after, 1e3 * r.seconds);
+    std::printf(
+        "[panda %s] middle obstacle clearance %.4f -> %.4f m, length %.3f -> %.3f, %.1f ms\n",
+        family.c_str(), before, after, r.length_before, r.length_after, 1e3 * r.seconds);
     ++optimised;
     clearer += after > before;
   }
