@@ -105,6 +105,21 @@ inline std::shared_ptr<const RobotModel> cached_model(const std::string& urdf) {
   return model;
 }
 
+/// The own arm with its SRDF's collision matrix in its table-and-wall scene.
+struct ArmInScene {
+  std::shared_ptr<const RobotModel> model;
+  AllowedCollisionMatrix matrix;
+  PlanningScene scene;
+};
+
+inline ArmInScene arm_in_scene() {
+  ArmInScene w;
+  w.model = cached_model(own_arm().urdf);
+  w.matrix = AllowedCollisionMatrix::from_srdf(*w.model, read_srdf_file(own_arm().srdf));
+  w.scene = read_planning_scene(robots_dir() + "/hullcheck_arm/scenes/table_wall.yaml", *w.model);
+  return w;
+}
+
 /// Minimum signed distance over every self pair `matrix` checks, each query cold: the brute
 /// force a clearance search must equal. `status`: that pair's query status.
 inline double brute_force_self_clearance(const RobotModel& model,

@@ -11,7 +11,7 @@ void OptimizationOptions::add_to(CLI::App& command) {
   command
       .add_option("--clearance-scope", scope,
                   "Pairs clearance objectives, the optimizer and reports use: auto (obstacles "
-                  "and the self pairs the group can take within --margin and clear of it; "
+                  "and the self pairs the group moves and can take --margin apart; "
                   "default), all, obstacles, self")
       ->check(CLI::IsMember({"auto", "all", "obstacles", "self"}));
   command

@@ -68,8 +68,8 @@ void run(const PlanSettings& s) {
   planning.validity->set_clearance_scope(scope);
   if (scope && s.optimization.scope == "auto") {
     std::printf(
-        "clearance scope auto: obstacles and %zu of %zu self pairs (those the group can take "
-        "within %g m and clear of it)\n",
+        "clearance scope auto: obstacles and %zu of %zu self pairs (those the group moves and "
+        "can take %g m apart)\n",
         scope->self_link_pairs().size(), world.checker->checked_link_pairs().size(),
         s.optimization.settings.margin);
   }

@@ -14,20 +14,8 @@
 namespace hullcheck {
 namespace {
 
-struct ArmInScene {
-  std::shared_ptr<const RobotModel> model;
-  AllowedCollisionMatrix matrix;
-  PlanningScene scene;
-};
-
-ArmInScene arm_in_scene() {
-  ArmInScene w;
-  w.model = test::cached_model(test::own_arm().urdf);
-  w.matrix = AllowedCollisionMatrix::from_srdf(*w.model, read_srdf_file(test::own_arm().srdf));
-  w.scene =
-      read_planning_scene(test::robots_dir() + "/hullcheck_arm/scenes/table_wall.yaml", *w.model);
-  return w;
-}
+using test::arm_in_scene;
+using test::ArmInScene;
 
 TEST(ClearanceScope, EachScopeEqualsBruteForceOverItsPairs) {
   const ArmInScene w = arm_in_scene();

@@ -20,20 +20,8 @@ namespace {
 
 using LinkPair = std::pair<int, int>;
 
-struct ArmInScene {
-  std::shared_ptr<const RobotModel> model;
-  AllowedCollisionMatrix matrix;
-  PlanningScene scene;
-};
-
-ArmInScene arm_in_scene() {
-  ArmInScene w;
-  w.model = test::cached_model(test::own_arm().urdf);
-  w.matrix = AllowedCollisionMatrix::from_srdf(*w.model, read_srdf_file(test::own_arm().srdf));
-  w.scene =
-      read_planning_scene(test::robots_dir() + "/hullcheck_arm/scenes/table_wall.yaml", *w.model);
-  return w;
-}
+using test::arm_in_scene;
+using test::ArmInScene;
 
 /// Minimum signed distance over every shape pair of the link pairs listed, each query cold.
 double brute_force_link_pairs(const RobotModel& model, const std::vector<LinkPair>& pairs,
