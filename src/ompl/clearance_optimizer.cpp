@@ -71,10 +71,12 @@ class Optimizer {
         lower_(model_.lower_limits()),
         upper_(model_.upper_limits()),
         state_(si->allocState()),
-        other_(si->allocState()) {}
+        other_(si->allocState()),
+        middle_(si->allocState()) {}
   ~Optimizer() {
     si_->freeState(state_);
     si_->freeState(other_);
+    si_->freeState(middle_);
   }
   Optimizer(const Optimizer&) = delete;
   Optimizer& operator=(const Optimizer&) = delete;
@@ -161,6 +163,30 @@ class Optimizer {
     return clean;
   }
 
+  /// Splits the motions whose middle is closer than the margin and than both their ends (the
+  /// waypoint discretisation misses that dip) at their middle, while the path has fewer than
+  /// `limit` waypoints. A middle lies on its certified motion, so the split motions stay
+  /// certified. Returns the waypoints added.
+  int refine(std::size_t limit) {
+    int added = 0;
+    for (std::size_t k = 0; k + 1 < w_.q.size() && w_.q.size() < limit; ++k) {
+      joints_.from_configuration(w_.q[k], state_);
+      joints_.from_configuration(w_.q[k + 1], other_);
+      si_->getStateSpace()->interpolate(state_, other_, 0.5, middle_);
+      Eigen::VectorXd q(w_.q[k]);
+      joints_.to_configuration(middle_, q);
+      const double d = scoped_distance(q);
+      if (!(d < options_.margin) || !(d < std::min(w_.d[k], w_.d[k + 1]))) continue;
+      w_.q.insert(w_.q.begin() + static_cast<std::ptrdiff_t>(k + 1), q);
+      w_.d.insert(w_.d.begin() + static_cast<std::ptrdiff_t>(k + 1), d);
+      w_.rho.insert(w_.rho.begin() + static_cast<std::ptrdiff_t>(k + 1), objective_.density(d));
+      step_.insert(step_.begin() + static_cast<std::ptrdiff_t>(k + 1), 1.0);
+      ++added;
+      ++k;  // past the new waypoint
+    }
+    return added;
+  }
+
   const Waypoints& waypoints() const { return w_; }
 
  private:
@@ -223,6 +249,7 @@ class Optimizer {
   Eigen::VectorXd lower_, upper_;
   ob::State* state_;
   ob::State* other_;
+  ob::State* middle_;
   Waypoints w_;
   std::vector<double> step_;  // per waypoint: its step as a fraction of max_step
   std::vector<Eigen::Isometry3d> poses_;
@@ -288,10 +315,19 @@ ClearanceOptimizationResult optimize_clearance(const ob::SpaceInformationPtr& si
   Waypoints certified = optimizer.waypoints();
   og::PathSimplifier simplifier(si, ob::GoalPtr(), objective);
   // The interpolated input: its motions are parts of the input's, certified as those are.
+  // Once the rounds settle, motions that dip below the margin between their waypoints are split
+  // (up to twice the interpolated count) and the rounds go on.
+  const std::size_t refine_limit = 2 * std::max(count, work.getStateCount());
   while (Clock::now() < deadline) {
     const int moves = optimizer.round(deadline);
     ++result.rounds;
-    if (moves == 0) break;
+    if (moves == 0) {
+      const int added = optimizer.refine(refine_limit);
+      if (added == 0) break;
+      result.refined += added;
+      certified = optimizer.waypoints();
+      continue;
+    }
     optimizer.certify(certified);
     result.moves += moves;
     certified = optimizer.waypoints();

@@ -186,7 +186,8 @@ TEST(Srdf, OwnArm) {
   EXPECT_EQ(both->subgroups, (std::vector<std::string>{"arm", "gripper"}));
   EXPECT_EQ(srdf.group("no_such_group"), nullptr);
 
-  ASSERT_EQ(srdf.group_states.size(), 7u);  // home ready stow left right (arm), open closed
+  // home ready stow left right shelf_low shelf_high (arm), open closed (gripper)
+  ASSERT_EQ(srdf.group_states.size(), 9u);
   const SrdfGroupState* ready = srdf.group_state("arm", "ready");
   ASSERT_NE(ready, nullptr);
   const std::vector<std::pair<std::string, double>> ready_values = {

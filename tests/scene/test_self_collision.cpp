@@ -620,10 +620,11 @@ TEST(SelfCollision, OwnArmNamedStatesAreFreeWithAdjacencyOnly) {
       std::make_shared<const RobotModel>(RobotModel::from_urdf_file(test::own_arm().urdf));
   const Srdf srdf = read_srdf_file(test::own_arm().srdf);
   const AllowedCollisionMatrix adjacency = AllowedCollisionMatrix::from_adjacency(*model);
-  // home, ready, stow, left, right (arm; fingers closed), open, closed (gripper; arm at home).
+  // home, ready, stow, left, right, shelf_low, shelf_high (arm; fingers closed), open, closed
+  // (gripper; arm at home).
   const std::vector<StateVerdict> verdicts =
       check_states(model, srdf, adjacency, model->default_configuration());
-  ASSERT_EQ(verdicts.size(), 7u);
+  ASSERT_EQ(verdicts.size(), 9u);
   for (const StateVerdict& v : verdicts) {
     EXPECT_TRUE(v.colliding.empty()) << v.name;
     // The README: non-adjacent links at least 2 cm apart at zero, the closed fingers 8 mm.
@@ -643,7 +644,7 @@ TEST(SelfCollision, OwnArmNamedStatesAreFreeWithAdjacencyOnly) {
       ++combined;
     }
   }
-  EXPECT_EQ(combined, 10);  // 5 arm states x 2 gripper states
+  EXPECT_EQ(combined, 14);  // 7 arm states x 2 gripper states
 }
 
 TEST(SelfCollision, OtherSharedNamedStatesAreFreeWithTheirSrdfMatrix) {

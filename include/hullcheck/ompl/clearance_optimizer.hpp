@@ -21,7 +21,8 @@ struct ClearanceOptimizationOptions {
   /// Joint-space distance between waypoints while optimising (the path is interpolated to it,
   /// up to max_waypoints states), > 0.
   double waypoint_spacing = 0.1;
-  int max_waypoints = 48;  ///< >= 3.
+  /// >= 3: most waypoints of the interpolation; refinement may add as many again.
+  int max_waypoints = 48;
   /// rad (or m), > 0: the largest change of any one value of a waypoint in one step.
   double max_step = 0.1;
 };
@@ -35,6 +36,7 @@ struct ClearanceOptimizationResult {
   double min_clearance_before = 0.0, min_clearance_after = 0.0;
   int rounds = 0;        ///< Gradient rounds run (one pass over the waypoints each).
   int moves = 0;         ///< Waypoint moves the rounds accepted.
+  int refined = 0;       ///< Waypoints added where motions dipped below the margin.
   int shortcuts = 0;     ///< Shortcut passes that changed the path.
   bool changed = false;  ///< The path was replaced (false: returned as given).
   double seconds = 0.0;  ///< Time spent.
@@ -52,10 +54,12 @@ struct ClearanceOptimizationResult {
 /// value and within joint limits, a move kept only when it lowers that discretisation (its step
 /// halved otherwise, doubled after a success); then the space information's motion validator
 /// (a GuaranteedMotionValidator certifies every configuration between waypoints) checks every
-/// motion, and OMPL's shortcuts, accepted only when they do not raise the objective, shorten
-/// the path. A round whose motions do not all pass is discarded. The result replaces `path`
-/// only when every motion of it passed and its objective cost (path.cost of the objective)
-/// is no higher than the input's: the path returned is never worse on the objective, and
+/// motion. When a round moves nothing, motions whose middle is closer than the margin and than
+/// both their ends are split there (the discretisation missed that dip; at most doubling the
+/// waypoints) and the rounds go on. Finally OMPL's shortcuts, accepted only when they do not raise
+/// the objective, shorten the path. A round whose motions do not all pass is discarded. The result
+/// replaces `path` only when every motion of it passed and its objective cost (path.cost of the
+/// objective) is no higher than the input's: the path returned is never worse on the objective, and
 /// never uncertified when it changed.
 /// Allocates; thread-safe as the space information's checkers are. Throws InputError on bad
 /// options or a path of another space.
