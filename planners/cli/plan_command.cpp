@@ -109,12 +109,13 @@ void run(const PlanSettings& s) {
         optimize_clearance(si, *planning.validity, path, s.optimization.settings);
     std::printf(
         "optimized for clearance (scope %s, margin %g m, length weight %g) in %.3f s: %s; "
-        "objective %.4f -> %.4f, length %.4f -> %.4f (%+.1f%%), %d rounds, %d waypoint moves\n",
+        "objective %.4f -> %.4f, length %.4f -> %.4f (%+.1f%%), %d rounds, %d waypoint moves, "
+        "%d waypoints added\n",
         s.optimization.scope.c_str(), s.optimization.settings.margin,
         s.optimization.settings.length_weight, r.seconds,
         r.changed ? "path replaced" : "input kept (no certified improvement)", r.cost_before,
         r.cost_after, r.length_before, r.length_after,
-        100.0 * (r.length_after / r.length_before - 1.0), r.rounds, r.moves);
+        100.0 * (r.length_after / r.length_before - 1.0), r.rounds, r.moves, r.refined);
   }
   // Per-scope minima over the waypoints and 19 states inside each motion, before and after.
   const PairScope obstacles = world.checker->pair_scope(ClearanceScope::kObstacles);

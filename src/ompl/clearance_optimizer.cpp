@@ -53,8 +53,8 @@ void check_options(const ClearanceOptimizationOptions& o) {
 // The waypoints being optimised: full configurations, their densities and scoped clearances.
 struct Waypoints {
   std::vector<Eigen::VectorXd> q;
-  std::vector<double> d;    // scoped signed distance, m
-  std::vector<double> rho;  // cost density
+  std::vector<ClearanceResult> closest;  // the scope's closest pair (distance, witnesses)
+  std::vector<double> rho;               // cost density
 };
 
 class Optimizer {
@@ -88,7 +88,7 @@ class Optimizer {
       w_.q.push_back(Eigen::VectorXd(model_.variable_count()));
       joints_.to_configuration(path.getState(i), w_.q.back());
     }
-    w_.d.assign(w_.q.size(), 0.0);
+    w_.closest.assign(w_.q.size(), ClearanceResult{});
     w_.rho.assign(w_.q.size(), 0.0);
     for (std::size_t i = 0; i < w_.q.size(); ++i) evaluate(i);
     step_.assign(w_.q.size(), 1.0);
@@ -119,12 +119,16 @@ class Optimizer {
       for (int attempt = 0; attempt < 3 && step_[i] > kSmallestStep; ++attempt) {
         trial = w_.q[i] - (step_[i] * options_.max_step / largest) * g;
         clamp(trial);
-        const double d = checker_.is_valid(trial) ? scoped_distance(trial) : -1.0;
+        double d = -1.0;
+        if (checker_.is_valid(trial)) {
+          trial_closest_ = scoped_clearance(trial);
+          d = trial_closest_.distance;
+        }
         if (d > 0.0) {
           const double rho = objective_.density(d);
           if (local_cost(i, trial, rho) < before - 1e-12 * std::abs(before)) {
             w_.q[i] = trial;
-            w_.d[i] = d;
+            w_.closest[i] = trial_closest_;
             w_.rho[i] = rho;
             step_[i] = std::min(1.0, 2.0 * step_[i]);
             kept = true;
@@ -154,7 +158,7 @@ class Optimizer {
         again = true;
         for (std::size_t j : {k, k + 1}) {
           w_.q[j] = certified.q[j];
-          w_.d[j] = certified.d[j];
+          w_.closest[j] = certified.closest[j];
           w_.rho[j] = certified.rho[j];
           step_[j] *= 0.25;
         }
@@ -175,10 +179,14 @@ class Optimizer {
       si_->getStateSpace()->interpolate(state_, other_, 0.5, middle_);
       Eigen::VectorXd q(w_.q[k]);
       joints_.to_configuration(middle_, q);
-      const double d = scoped_distance(q);
-      if (!(d < options_.margin) || !(d < std::min(w_.d[k], w_.d[k + 1]))) continue;
+      const ClearanceResult closest = scoped_clearance(q);
+      const double d = closest.distance;
+      if (!(d < options_.margin) ||
+          !(d < std::min(w_.closest[k].distance, w_.closest[k + 1].distance))) {
+        continue;
+      }
       w_.q.insert(w_.q.begin() + static_cast<std::ptrdiff_t>(k + 1), q);
-      w_.d.insert(w_.d.begin() + static_cast<std::ptrdiff_t>(k + 1), d);
+      w_.closest.insert(w_.closest.begin() + static_cast<std::ptrdiff_t>(k + 1), closest);
       w_.rho.insert(w_.rho.begin() + static_cast<std::ptrdiff_t>(k + 1), objective_.density(d));
       step_.insert(step_.begin() + static_cast<std::ptrdiff_t>(k + 1), 1.0);
       ++added;
@@ -192,13 +200,13 @@ class Optimizer {
  private:
   static constexpr double kSmallestStep = 1.0 / 64.0;
 
-  double scoped_distance(const Eigen::VectorXd& q) const {
+  ClearanceResult scoped_clearance(const Eigen::VectorXd& q) const {
     const std::shared_ptr<const PairScope>& scope = validity_.clearance_scope();
-    return scope ? checker_.clearance(q, *scope).distance : checker_.clearance(q).distance;
+    return scope ? checker_.clearance(q, *scope) : checker_.clearance(q);
   }
   void evaluate(std::size_t i) {
-    w_.d[i] = scoped_distance(w_.q[i]);
-    w_.rho[i] = objective_.density(w_.d[i]);
+    w_.closest[i] = scoped_clearance(w_.q[i]);
+    w_.rho[i] = objective_.density(w_.closest[i].distance);
   }
   // Group values of b - a, continuous joints the short way round.
   double difference(int v, const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
@@ -223,12 +231,10 @@ class Optimizer {
       if (la > 0.0) g[v] += wa * difference(v, w_.q[i - 1], w_.q[i]) / la;
       if (lb > 0.0) g[v] += wb * difference(v, w_.q[i + 1], w_.q[i]) / lb;
     }
-    if (!(w_.d[i] < options_.margin)) return;
+    // The closest pair and its witnesses as found when q_i was evaluated (same q, same pair).
+    const ClearanceResult& closest = w_.closest[i];
+    if (!(closest.distance < options_.margin) || closest.link_a < 0) return;
     model_.compute_link_poses(w_.q[i], poses_);
-    const std::shared_ptr<const PairScope>& scope = validity_.clearance_scope();
-    const ClearanceResult closest =
-        scope ? checker_.clearance_at(poses_, *scope) : checker_.clearance_at(poses_);
-    if (closest.link_a < 0) return;
     const Eigen::VectorXd dd = clearance_gradient(model_, poses_, closest);
     const double weight = 0.5 * (la + lb) / options_.margin;
     for (int v : joints_.variables()) g[v] -= weight * dd[v];
@@ -253,6 +259,7 @@ class Optimizer {
   Waypoints w_;
   std::vector<double> step_;  // per waypoint: its step as a fraction of max_step
   std::vector<Eigen::Isometry3d> poses_;
+  ClearanceResult trial_closest_;
 };
 
 // Minimum of the validity checker's (scoped) clearance over the path's states.
@@ -333,8 +340,8 @@ ClearanceOptimizationResult optimize_clearance(const ob::SpaceInformationPtr& si
     certified = optimizer.waypoints();
   }
   optimizer.store(work);
-  // One pass of shortcuts: as many attempts as waypoints, up to 16.
-  const auto attempts = static_cast<unsigned>(std::min<std::size_t>(work.getStateCount(), 16));
+  // One pass of shortcuts: as many attempts as waypoints, up to 8.
+  const auto attempts = static_cast<unsigned>(std::min<std::size_t>(work.getStateCount(), 8));
   if (Clock::now() < deadline && detail::shortcut_path(simplifier, work, attempts, attempts)) {
     ++result.shortcuts;
   }

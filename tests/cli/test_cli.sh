@@ -177,6 +177,42 @@ expect "plan writes JSON by extension" 0 "solved" "" -- \
   --objective clearance --out "$tmp/path.json"
 expect "JSON path parses back" 0 "path VALID" "" -- \
   "$bin" validate "${world[@]}" --path "$tmp/path.json"
+# The clearance optimizer on the demo problem (the shelf): before/after per scope, a plot with
+# both profiles, a viewer with both paths, and a path that validates.
+shelf=(--robot "$urdf" --srdf "$srdf" --scene "$arm/scenes/shelf.yaml")
+# The group states' values (from the SRDF), straight from one to the other.
+expect "the demo problem needs a search: its straight motion hits the shelf" 2 \
+  "motion 0 -> 1: INVALID" "" -- "$bin" validate "${shelf[@]}" --path <(
+  printf 'joint1,joint2,joint3,joint4,joint5,joint6,joint7\n'
+  grep -A7 -E 'name="shelf_(low|high)"' "$srdf" | sed -n 's/.*value="\([^"]*\)".*/\1/p' |
+    paste -sd, | awk -F, '{ for (i = 1; i <= 14; ++i) printf "%s%s", $i, (i == 7 || i == 14) ? "\n" : "," }')
+expect "plan --optimize clearance reports before -> after per scope" 0 \
+  "^  min obstacles clearance [0-9.]+ -> [0-9.]+ m" "" -- \
+  "$bin" plan "${shelf[@]}" --group arm --start shelf_low --goal shelf_high --simplify \
+  --optimize clearance --margin 0.05 --out "$tmp/optimized.csv" --plot "$tmp/before_after.svg" \
+  --viewer "$tmp/both.html"
+cp "$tmp/out" "$tmp/optimize_out"
+expect "... the optimizer's line names its scope, margin and weight" 0 \
+  "optimized for clearance \(scope auto, margin 0.05 m, length weight 0.1\) in [0-9.]+ s: path (replaced|kept)" \
+  "" -- cat "$tmp/optimize_out"
+for curve in "obstacles before" "obstacles after" "self before" "self after"; do
+  expect "the plot has the curve '$curve'" 0 ">$curve<" "" -- grep -o ">$curve<" "$tmp/before_after.svg"
+done
+expect "the viewer holds both paths" 0 '"before": \[\[\[' "" -- \
+  grep -o '"before": \[\[\[' "$tmp/both.html"
+expect "the optimized path validates" 0 "path VALID" "" -- \
+  "$bin" validate "${shelf[@]}" --path "$tmp/optimized.csv"
+expect "plan --clearance-scope obstacles" 0 "scope obstacles" "" -- \
+  "$bin" plan "${shelf[@]}" --group arm --start shelf_low --goal shelf_high \
+  --optimize clearance --clearance-scope obstacles
+expect "plan: unknown --clearance-scope" 1 "" "--clearance-scope" -- \
+  "$bin" plan "${shelf[@]}" --group arm --start shelf_low --goal shelf_high \
+  --optimize clearance --clearance-scope wrists
+expect "plan: --margin 0 is a usage error" 1 "" "--margin" -- \
+  "$bin" plan "${shelf[@]}" --group arm --start shelf_low --goal shelf_high \
+  --optimize clearance --margin 0
+expect "plan: --optimize other than clearance" 1 "" "--optimize" -- \
+  "$bin" plan "${shelf[@]}" --group arm --start shelf_low --goal shelf_high --optimize length
 printf 'joint1,joint2,joint3,joint4,joint5,joint6,joint7\n0.5,0.5,0,-1.3,0,1,0\n-0.5,0.5,0,-1.3,0,1,0\n' \
   >"$tmp/through_wall.csv"
 expect "validate rejects a motion through the wall" 2 "motion 0 -> 1: INVALID" "" -- \
@@ -321,6 +357,17 @@ if [ -d "$mbm/panda/box_panda" ] && [ -d "$mbm/ur5/table_pick_ur5" ]; then
   expect "MBM Panda: validate the planned path" 0 "path VALID" "" -- \
     "$bin" validate "${panda[@]}" --scene "$mbm/panda/box_panda/scene0001.yaml" \
     --path "$tmp/mbm.csv"
+  # Plan, optimize for clearance, validate: VALID on every request of this subset.
+  ur5=(--robot "$mbm/robots/ur5_robotiq85/ur5.urdf" --srdf "$mbm/robots/ur5_robotiq85/ur5.srdf")
+  for problem in panda/box_panda ur5/table_pick_ur5 ur5/box_ur5; do
+    if [ "${problem%%/*}" = panda ]; then robot=("${panda[@]}"); else robot=("${ur5[@]}"); fi
+    files=(--scene "$mbm/$problem/scene0001.yaml" --request "$mbm/$problem/request0001.yaml")
+    expect "MBM $problem: plan --optimize clearance" 0 "optimized for clearance" "" -- \
+      "$bin" plan "${robot[@]}" "${files[@]}" --time 10 --simplify --optimize clearance \
+      --out "$tmp/optimized_mbm.csv"
+    expect "MBM $problem: the optimized path validates" 0 "path VALID" "" -- \
+      "$bin" validate "${robot[@]}" "${files[@]}" --path "$tmp/optimized_mbm.csv"
+  done
   printf '# two UR5 problems\n%s %s\n%s %s\n' \
     "$mbm/ur5/table_pick_ur5/scene0001.yaml" "$mbm/ur5/table_pick_ur5/request0001.yaml" \
     "$mbm/ur5/box_ur5/scene0001.yaml" "$mbm/ur5/box_ur5/request0001.yaml" >"$tmp/ur5.list"

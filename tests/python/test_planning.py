@@ -141,6 +141,7 @@ def test_optimize_clearance_buys_obstacle_clearance(checker, problem):
         o = hc.optimize_clearance(checker, r["path"], joints=group, margin=0.05, scope=scope)
         assert o["cost"] <= o["cost_before"]
         assert o["length_before"] == pytest.approx(r["length"], rel=1e-9)
+        assert o["rounds"] >= 1 and o["moves"] >= 0 and o["refined"] >= 0
         path = o["path"]
         np.testing.assert_array_equal(path[0], left)
         np.testing.assert_allclose(path[-1], right, atol=1e-12)
