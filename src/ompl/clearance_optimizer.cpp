@@ -39,6 +39,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Rounds stop once one saves less than this fraction of the (discretised) cost.
+constexpr double kSettled = 1e-3;
+
 void check_options(const ClearanceOptimizationOptions& o) {
   const auto positive = [](double x) { return x > 0.0 && std::isfinite(x); };
   if (!positive(o.margin) || !(o.length_weight >= 0.0) || !std::isfinite(o.length_weight) ||
@@ -92,6 +95,7 @@ class Optimizer {
     w_.rho.assign(w_.q.size(), 0.0);
     for (std::size_t i = 0; i < w_.q.size(); ++i) evaluate(i);
     step_.assign(w_.q.size(), 1.0);
+    middle_checked_.assign(w_.q.size(), 0);
   }
 
   /// Writes the waypoints into `path`.
@@ -103,9 +107,9 @@ class Optimizer {
     }
   }
 
-  /// One Gauss-Seidel pass over the interior waypoints; returns the moves kept. Stops early at
-  /// `deadline`.
-  int round(Clock::time_point deadline) {
+  /// One Gauss-Seidel pass over the interior waypoints; returns the moves kept and adds the
+  /// discretised cost they saved to `gain`. Stops early at `deadline`.
+  int round(Clock::time_point deadline, double& gain) {
     int moves = 0;
     Eigen::VectorXd g(model_.variable_count()), trial(model_.variable_count());
     for (std::size_t i = 1; i + 1 < w_.q.size(); ++i) {
@@ -126,11 +130,14 @@ class Optimizer {
         }
         if (d > 0.0) {
           const double rho = objective_.density(d);
-          if (local_cost(i, trial, rho) < before - 1e-12 * std::abs(before)) {
+          const double after = local_cost(i, trial, rho);
+          if (after < before - 1e-12 * std::abs(before)) {
+            gain += before - after;
             w_.q[i] = trial;
             w_.closest[i] = trial_closest_;
             w_.rho[i] = rho;
             step_[i] = std::min(1.0, 2.0 * step_[i]);
+            moved(i);
             kept = true;
             break;
           }
@@ -161,6 +168,7 @@ class Optimizer {
           w_.closest[j] = certified.closest[j];
           w_.rho[j] = certified.rho[j];
           step_[j] *= 0.25;
+          moved(j);
         }
       }
     }
@@ -174,6 +182,8 @@ class Optimizer {
   int refine(std::size_t limit) {
     int added = 0;
     for (std::size_t k = 0; k + 1 < w_.q.size() && w_.q.size() < limit; ++k) {
+      if (middle_checked_[k]) continue;  // neither end moved since its middle was checked
+      middle_checked_[k] = 1;
       joints_.from_configuration(w_.q[k], state_);
       joints_.from_configuration(w_.q[k + 1], other_);
       si_->getStateSpace()->interpolate(state_, other_, 0.5, middle_);
@@ -189,6 +199,8 @@ class Optimizer {
       w_.closest.insert(w_.closest.begin() + static_cast<std::ptrdiff_t>(k + 1), closest);
       w_.rho.insert(w_.rho.begin() + static_cast<std::ptrdiff_t>(k + 1), objective_.density(d));
       step_.insert(step_.begin() + static_cast<std::ptrdiff_t>(k + 1), 1.0);
+      middle_checked_[k] = 0;  // the two halves' middles are new
+      middle_checked_.insert(middle_checked_.begin() + static_cast<std::ptrdiff_t>(k + 1), 0);
       ++added;
       ++k;  // past the new waypoint
     }
@@ -197,9 +209,23 @@ class Optimizer {
 
   const Waypoints& waypoints() const { return w_; }
 
+  /// The objective's waypoint discretisation F (see the file's comment).
+  double cost() const {
+    double f = 0.0;
+    for (std::size_t k = 0; k + 1 < w_.q.size(); ++k) {
+      f += 0.5 * distance(w_.q[k], w_.q[k + 1]) * (w_.rho[k] + w_.rho[k + 1]);
+    }
+    return f;
+  }
+
  private:
   static constexpr double kSmallestStep = 1.0 / 64.0;
 
+  // Waypoint i changed: the middles of its motions need checking again.
+  void moved(std::size_t i) {
+    middle_checked_[i] = 0;
+    if (i > 0) middle_checked_[i - 1] = 0;
+  }
   ClearanceResult scoped_clearance(const Eigen::VectorXd& q) const {
     const std::shared_ptr<const PairScope>& scope = validity_.clearance_scope();
     return scope ? checker_.clearance(q, *scope) : checker_.clearance(q);
@@ -258,6 +284,8 @@ class Optimizer {
   ob::State* middle_;
   Waypoints w_;
   std::vector<double> step_;  // per waypoint: its step as a fraction of max_step
+  // Per motion k (waypoints k, k + 1): its middle was checked by refine since either end moved.
+  std::vector<char> middle_checked_;
   std::vector<Eigen::Isometry3d> poses_;
   ClearanceResult trial_closest_;
 };
@@ -310,39 +338,48 @@ ClearanceOptimizationResult optimize_clearance(const ob::SpaceInformationPtr& si
   if (path.getStateCount() < 2) return finish(path);
 
   og::PathGeometric work(path);
-  const double length = work.length();
-  const auto wanted = static_cast<std::size_t>(std::ceil(length / options.waypoint_spacing)) + 1;
-  const std::size_t count = std::min<std::size_t>(
-      std::max(wanted, work.getStateCount()),
-      std::max<std::size_t>(work.getStateCount(), static_cast<std::size_t>(options.max_waypoints)));
-  work.interpolate(static_cast<unsigned>(count));
-
   Optimizer optimizer(si, validity, options, *objective);
-  optimizer.load(work);
-  Waypoints certified = optimizer.waypoints();
   og::PathSimplifier simplifier(si, ob::GoalPtr(), objective);
-  // The interpolated input: its motions are parts of the input's, certified as those are.
-  // Once the rounds settle, motions that dip below the margin between their waypoints are split
-  // (up to twice the interpolated count) and the rounds go on.
-  const std::size_t refine_limit = 2 * std::max(count, work.getStateCount());
-  while (Clock::now() < deadline) {
-    const int moves = optimizer.round(deadline);
-    ++result.rounds;
-    if (moves == 0) {
-      const int added = optimizer.refine(refine_limit);
-      if (added == 0) break;
-      result.refined += added;
-      certified = optimizer.waypoints();
-      continue;
+  // Two passes at most: gradient rounds, then shortcuts; when a shortcut changed the path, the
+  // rounds run again on it, so that the path returned ends with rounds (a shortcut's straight
+  // motion may pass closer than the margin between its ends).
+  for (int pass = 0; pass < 2 && Clock::now() < deadline; ++pass) {
+    // The path interpolated to waypoint_spacing (up to max_waypoints, never fewer states than
+    // it has): its motions are parts of its certified motions, certified as those are.
+    const auto wanted =
+        static_cast<std::size_t>(std::ceil(work.length() / options.waypoint_spacing)) + 1;
+    const std::size_t count = std::min<std::size_t>(
+        std::max(wanted, work.getStateCount()),
+        std::max<std::size_t>(work.getStateCount(),
+                              static_cast<std::size_t>(options.max_waypoints)));
+    work.interpolate(static_cast<unsigned>(count));
+    optimizer.load(work);
+    Waypoints certified = optimizer.waypoints();
+    // Once the rounds settle, motions that dip below the margin between their waypoints are
+    // split (up to twice the interpolated count) and the rounds go on.
+    const std::size_t refine_limit = 2 * work.getStateCount();
+    // Settled: a round that moved nothing, or saved less than kSettled of the cost.
+    while (Clock::now() < deadline) {
+      double gain = 0.0;
+      const int moves = optimizer.round(deadline, gain);
+      ++result.rounds;
+      if (moves > 0) {
+        optimizer.certify(certified);
+        result.moves += moves;
+        certified = optimizer.waypoints();
+      }
+      if (moves == 0 || gain < kSettled * optimizer.cost()) {
+        const int added = optimizer.refine(refine_limit);
+        if (added == 0) break;
+        result.refined += added;
+        certified = optimizer.waypoints();
+      }
     }
-    optimizer.certify(certified);
-    result.moves += moves;
-    certified = optimizer.waypoints();
-  }
-  optimizer.store(work);
-  // One pass of shortcuts: as many attempts as waypoints, up to 8.
-  const auto attempts = static_cast<unsigned>(std::min<std::size_t>(work.getStateCount(), 8));
-  if (Clock::now() < deadline && detail::shortcut_path(simplifier, work, attempts, attempts)) {
+    optimizer.store(work);
+    if (pass == 1 || !(Clock::now() < deadline)) break;
+    // One pass of shortcuts: as many attempts as waypoints, up to 8.
+    const auto attempts = static_cast<unsigned>(std::min<std::size_t>(work.getStateCount(), 8));
+    if (!detail::shortcut_path(simplifier, work, attempts, attempts)) break;
     ++result.shortcuts;
   }
 

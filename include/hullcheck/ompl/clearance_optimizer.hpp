@@ -47,20 +47,24 @@ struct ClearanceOptimizationResult {
 /// (set it with StateValidityChecker::set_clearance_scope; optimization_scope() gives the
 /// default worth optimising: obstacles and the self pairs the group can move).
 ///
-/// Rounds of: the path interpolated to waypoint_spacing; each interior waypoint moved in turn
+/// The path is interpolated to waypoint_spacing; rounds move each interior waypoint in turn
 /// along minus the gradient of the objective's waypoint discretisation (segment lengths
 /// weighted by the cost density at their ends; the clearance's gradient from the closest
 /// pair's witnesses, normal and link Jacobians, clearance_gradient), by at most max_step per
 /// value and within joint limits, a move kept only when it lowers that discretisation (its step
-/// halved otherwise, doubled after a success); then the space information's motion validator
-/// (a GuaranteedMotionValidator certifies every configuration between waypoints) checks every
-/// motion. When a round moves nothing, motions whose middle is closer than the margin and than
-/// both their ends are split there (the discretisation missed that dip; at most doubling the
-/// waypoints) and the rounds go on. Finally OMPL's shortcuts, accepted only when they do not raise
-/// the objective, shorten the path. A round whose motions do not all pass is discarded. The result
-/// replaces `path` only when every motion of it passed and its objective cost (path.cost of the
-/// objective) is no higher than the input's: the path returned is never worse on the objective, and
-/// never uncertified when it changed.
+/// halved otherwise, doubled after a success); after each round the space information's motion
+/// validator (a GuaranteedMotionValidator certifies every configuration between waypoints)
+/// checks every changed motion, and waypoints of a failing motion go back to their last
+/// certified values. When a round saves less than 0.1% of the cost, motions whose middle is
+/// closer than the margin and than both their ends are split there (the discretisation missed
+/// that dip; at most doubling the waypoints) and the rounds go on; with nothing to split they
+/// stop. Then one pass of OMPL's shortcuts (kept only when they do not raise the objective);
+/// when it changed the path, interpolation and rounds run once more on the result, so that no
+/// shortcut's motion is left dipping below the margin unexamined. The result replaces `path`
+/// only when every motion of it passed and its objective cost (path.cost of the objective) is
+/// no higher than the input's: the path returned is never worse on the objective, and never
+/// uncertified when it changed. The time budget is checked between waypoints; the final
+/// certification of the result may overrun it by a few motion checks.
 /// Allocates; thread-safe as the space information's checkers are. Throws InputError on bad
 /// options or a path of another space.
 ClearanceOptimizationResult optimize_clearance(const ::ompl::base::SpaceInformationPtr& si,
