@@ -390,8 +390,8 @@ is released.
 Returns a dict: 'path' (K', dof), 'changed' (bool: False when the input is returned), 'cost_before'
 and 'cost', 'length_before' and 'length' (joint-space), 'min_clearance_before' and
 'min_clearance' (m, the scope's minimum over the waypoints), 'self_pairs' (self link pairs in
-the scope), 'rounds', 'moves' (accepted waypoint moves), 'refined' (waypoints added where motions dipped
-below the margin), 'seconds'.)");
+the scope), 'rounds', 'moves' (accepted waypoint moves), 'refined' (waypoints added where
+motions dipped below the margin), 'seconds'.)");
 }
 
 }  // namespace hullcheck::python

@@ -110,6 +110,32 @@ void expect_contract(const Problem& p, const og::PathGeometric& input,
   }
 }
 
+/// One seeded run of the demo pipeline: RRTConnect from a to b, shortcuts, optimize_clearance
+/// (its contract checked); the middle obstacle clearance of the path before and after.
+struct SeededRun {
+  ClearanceOptimizationResult result;
+  double before = 0.0, after = 0.0;
+};
+void plan_and_optimize(Problem& p, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+                       unsigned seed, const ClearanceOptimizationOptions& options,
+                       const char* label, SeededRun& run) {
+  test::reseed_ompl(seed);
+  og::PathGeometric path = plan(p, a, b, 5.0);
+  ASSERT_GE(path.getStateCount(), 2u);
+  p.setup.setup->getPathSimplifier()->simplifyMax(path);
+  const og::PathGeometric input(path);
+  const ClearanceOptimizationResult& r = run.result =
+      optimize_clearance(p.setup.setup->getSpaceInformation(), *p.setup.validity, path, options);
+  expect_contract(p, input, path, r, options);
+  run.before = middle_obstacle_clearance(p, input);
+  run.after = middle_obstacle_clearance(p, path);
+  std::printf(
+      "[%s seed %u] middle obstacle clearance %.4f -> %.4f m, length %.3f -> %.3f, %d rounds, "
+      "%d moves, %d added, %.1f ms\n",
+      label, seed, run.before, run.after, r.length_before, r.length_after, r.rounds, r.moves,
+      r.refined, 1e3 * r.seconds);
+}
+
 // ---------------------------------------------------------------------------- scope, objective
 
 class OwnArm : public ::testing::Test {
@@ -239,24 +265,12 @@ TEST_F(OwnArm, DemoProblemGainsObstacleClearance) {
   const ClearanceOptimizationOptions options;
   int within_margin = 0;
   for (unsigned seed = 1; seed <= static_cast<unsigned>(test::scaled(6, 2)); ++seed) {
-    test::reseed_ompl(seed);
-    og::PathGeometric path = plan(p_, start_, goal_, 5.0);
-    ASSERT_GE(path.getStateCount(), 2u);
-    p_.setup.setup->getPathSimplifier()->simplifyMax(path);
-    const og::PathGeometric input(path);
     SCOPED_TRACE("seed " + std::to_string(seed));
-    const ClearanceOptimizationResult r = optimize_clearance(p_.setup.setup->getSpaceInformation(),
-                                                             *p_.setup.validity, path, options);
-    expect_contract(p_, input, path, r, options);
-    const double before = middle_obstacle_clearance(p_, input);
-    const double after = middle_obstacle_clearance(p_, path);
-    std::printf(
-        "[demo seed %u] middle obstacle clearance %.4f -> %.4f m, length %.3f -> %.3f, %d rounds, "
-        "%d moves, %.1f ms\n",
-        seed, before, after, r.length_before, r.length_after, r.rounds, r.moves, 1e3 * r.seconds);
-    EXPECT_GE(after, std::min(2.0 * before, 0.8 * options.margin));
-    EXPECT_LE(r.length_after, 1.3 * r.length_before);
-    within_margin += before < options.margin;
+    SeededRun run;
+    ASSERT_NO_FATAL_FAILURE(plan_and_optimize(p_, start_, goal_, seed, options, "demo", run));
+    EXPECT_GE(run.after, std::min(2.0 * run.before, 0.8 * options.margin));
+    EXPECT_LE(run.result.length_after, 1.3 * run.result.length_before);
+    within_margin += run.before < options.margin;
   }
   EXPECT_GT(within_margin, 0);
 }
@@ -282,26 +296,13 @@ TEST(OwnArmShelf, DemoKeepsTheMarginAlongTheMiddle) {
   std::vector<double> middles;
   int refined = 0;
   for (unsigned seed = 1; seed <= static_cast<unsigned>(test::scaled(6, 2)); ++seed) {
-    test::reseed_ompl(seed);
-    og::PathGeometric path = plan(p, low, high, 5.0);
-    ASSERT_GE(path.getStateCount(), 2u);
-    p.setup.setup->getPathSimplifier()->simplifyMax(path);
-    const og::PathGeometric input(path);
     SCOPED_TRACE("seed " + std::to_string(seed));
-    const ClearanceOptimizationResult r =
-        optimize_clearance(p.setup.setup->getSpaceInformation(), *p.setup.validity, path, options);
-    expect_contract(p, input, path, r, options);
-    const double before = middle_obstacle_clearance(p, input);
-    const double after = middle_obstacle_clearance(p, path);
-    std::printf(
-        "[shelf seed %u] middle obstacle clearance %.4f -> %.4f m, length %.3f -> %.3f, %d rounds, "
-        "%d moves, %d added, %.1f ms\n",
-        seed, before, after, r.length_before, r.length_after, r.rounds, r.moves, r.refined,
-        1e3 * r.seconds);
-    EXPECT_LT(r.seconds, options.time);  // converged, not cut short
-    EXPECT_GE(after, std::min(2.0 * before, 0.5 * options.margin));
-    middles.push_back(after);
-    refined += r.refined;
+    SeededRun run;
+    ASSERT_NO_FATAL_FAILURE(plan_and_optimize(p, low, high, seed, options, "shelf", run));
+    EXPECT_LT(run.result.seconds, options.time);  // converged, not cut short
+    EXPECT_GE(run.after, std::min(2.0 * run.before, 0.5 * options.margin));
+    middles.push_back(run.after);
+    refined += run.result.refined;
   }
   std::nth_element(middles.begin(), middles.begin() + middles.size() / 2, middles.end());
   EXPECT_GE(middles[middles.size() / 2], 0.8 * options.margin);
