@@ -136,7 +136,6 @@ def test_optimize_clearance_buys_obstacle_clearance(checker, problem):
     left, right, group = problem
     r = hc.plan(checker, left, right, joints=group, time=10.0, simplify=True)
     assert r["solved"]
-    before = hc.validate(checker, r["path"])
     for scope in ("auto", "all", "obstacles"):
         o = hc.optimize_clearance(checker, r["path"], joints=group, margin=0.05, scope=scope)
         assert o["cost"] <= o["cost_before"]
@@ -150,13 +149,29 @@ def test_optimize_clearance_buys_obstacle_clearance(checker, problem):
         assert v["valid"]  # every motion certified again, independently of the optimizer
         if not o["changed"]:
             np.testing.assert_array_equal(path, r["path"])
-    # The obstacle scope: the path's closest waypoint to an obstacle is no closer than before,
-    # unless it already kept the margin.
-    o = hc.optimize_clearance(checker, r["path"], joints=group, scope="obstacles")
-    after = hc.validate(checker, o["path"])
+    # The obstacle scope buys clearance along the whole middle of the path, not only at its
+    # waypoints: densely sampled, the middle 80% (by joint-space length; the ends cannot move)
+    # keeps 0.8 of the margin, or twice what the planner's path kept. The hinge trades clearance
+    # above the margin for length, and the length term settles the optimum slightly below the
+    # margin, hence 0.8 rather than 1.
+    o = hc.optimize_clearance(checker, r["path"], joints=group, margin=0.05, scope="obstacles")
     assert o["self_pairs"] == 0
-    assert after["obstacle_clearance"][1:-1].min() >= min(
-        before["obstacle_clearance"][1:-1].min(), 0.05) - 1e-9 or not o["changed"]
+    before_middle = middle_obstacle_clearance(checker, r["path"])
+    after_middle = middle_obstacle_clearance(checker, o["path"])
+    assert after_middle >= min(2.0 * before_middle, 0.8 * 0.05), (before_middle, after_middle)
+
+
+def middle_obstacle_clearance(checker, path, samples_per_motion=40):
+    """Smallest obstacle clearance, m, over the middle 80% of `path` sampled densely."""
+    lengths = np.linalg.norm(np.diff(path, axis=0), axis=1)
+    total, start, smallest = lengths.sum(), 0.0, np.inf
+    for i, length in enumerate(lengths):
+        for t in np.linspace(0.0, 1.0, samples_per_motion, endpoint=False):
+            if 0.1 * total <= start + t * length <= 0.9 * total:
+                q = path[i] + t * (path[i + 1] - path[i])
+                smallest = min(smallest, checker.clearance(q, scope="obstacles").distance)
+        start += length
+    return smallest
 
 
 @pytest.mark.parametrize("kwargs, message", [
