@@ -226,9 +226,12 @@ class Optimizer {
     middle_checked_[i] = 0;
     if (i > 0) middle_checked_[i - 1] = 0;
   }
+  // The scope's closest pair when closer than the margin; +inf (no pair) otherwise: the cost
+  // density is flat from the margin up and the gradient needs no pair there.
   ClearanceResult scoped_clearance(const Eigen::VectorXd& q) const {
     const std::shared_ptr<const PairScope>& scope = validity_.clearance_scope();
-    return scope ? checker_.clearance(q, *scope) : checker_.clearance(q);
+    return scope ? checker_.clearance(q, *scope, options_.margin)
+                 : checker_.clearance(q, ClearanceScope::kAll, options_.margin);
   }
   void evaluate(std::size_t i) {
     w_.closest[i] = scoped_clearance(w_.q[i]);
@@ -328,14 +331,14 @@ ClearanceOptimizationResult optimize_clearance(const ob::SpaceInformationPtr& si
   result.cost_before = path.cost(objective).value();
   result.length_before = path.length();
   result.min_clearance_before = min_waypoint_clearance(validity, path);
-  const auto finish = [&](const og::PathGeometric& final_path) {
-    result.cost_after = final_path.cost(objective).value();
+  const auto finish = [&](const og::PathGeometric& final_path, double cost) {
+    result.cost_after = cost;
     result.length_after = final_path.length();
     result.min_clearance_after = min_waypoint_clearance(validity, final_path);
     result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return result;
   };
-  if (path.getStateCount() < 2) return finish(path);
+  if (path.getStateCount() < 2) return finish(path, result.cost_before);
 
   og::PathGeometric work(path);
   Optimizer optimizer(si, validity, options, *objective);
@@ -385,11 +388,13 @@ ClearanceOptimizationResult optimize_clearance(const ob::SpaceInformationPtr& si
 
   // The contract, checked on the result itself: every motion passes, and the objective's cost
   // is no higher than the input's.
-  if (work.cost(objective).value() <= result.cost_before && all_motions_pass(si, work)) {
+  const double cost = work.cost(objective).value();
+  if (cost <= result.cost_before && all_motions_pass(si, work)) {
     path = work;
     result.changed = true;
+    return finish(path, cost);
   }
-  return finish(path);
+  return finish(path, result.cost_before);
 }
 
 }  // namespace hullcheck

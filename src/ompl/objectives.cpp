@@ -5,6 +5,7 @@
 #include <cmath>
 #include <hullcheck/core/errors.hpp>
 #include <hullcheck/ompl/objectives.hpp>
+#include <hullcheck/ompl/state_validity_checker.hpp>
 
 namespace hullcheck {
 
@@ -46,7 +47,11 @@ double ClearanceMarginObjective::density(double d) const {
 }
 
 ob::Cost ClearanceMarginObjective::stateCost(const ob::State* s) const {
-  return ob::Cost(density(si_->getStateValidityChecker()->clearance(s)));
+  // The density is flat from the margin up: hullcheck's checker need not measure past it.
+  const ob::StateValidityChecker* validity = si_->getStateValidityChecker().get();
+  const auto* ours = dynamic_cast<const StateValidityChecker*>(validity);
+  return ob::Cost(
+      density(ours != nullptr ? ours->clearance_below(s, margin_) : validity->clearance(s)));
 }
 
 ob::OptimizationObjectivePtr make_length_clearance_objective(const ob::SpaceInformationPtr& si,

@@ -39,8 +39,10 @@ void StateValidityChecker::set_clearance_scope(std::shared_ptr<const PairScope> 
   scope_ = std::move(scope);
 }
 
-ClearanceResult StateValidityChecker::scoped_clearance(const Eigen::VectorXd& q) const {
-  return scope_ ? checker_->clearance(q, *scope_) : checker_->clearance(q);
+ClearanceResult StateValidityChecker::scoped_clearance(const Eigen::VectorXd& q,
+                                                       double below) const {
+  return scope_ ? checker_->clearance(q, *scope_, below)
+                : checker_->clearance(q, ClearanceScope::kAll, below);
 }
 
 bool StateValidityChecker::isValid(const ::ompl::base::State* state, double& dist) const {
@@ -52,6 +54,10 @@ bool StateValidityChecker::isValid(const ::ompl::base::State* state, double& dis
 
 double StateValidityChecker::clearance(const ::ompl::base::State* state) const {
   return scoped_clearance(configuration(state)).distance;
+}
+
+double StateValidityChecker::clearance_below(const ::ompl::base::State* state, double below) const {
+  return scoped_clearance(configuration(state), below).distance;
 }
 
 ClearanceResult StateValidityChecker::closest(const ::ompl::base::State* state) const {

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <hullcheck/scene.hpp>
+#include <limits>
 
 #include "arguments.hpp"
 #include "bindings.hpp"
@@ -71,14 +72,14 @@ py::object is_valid(const CollisionChecker& checker, py::handle q, py::handle th
 }
 
 py::object clearance(const CollisionChecker& checker, py::handle q, py::handle threads,
-                     const std::string& scope_name) {
+                     const std::string& scope_name, double below) {
   const ClearanceScope scope = clearance_scope(scope_name);
   const Configurations c = configurations(q, "q", checker.model().variable_count());
   if (c.single) {
     ClearanceResult r;
     {
       py::gil_scoped_release release;
-      r = checker.clearance(c.row(0), scope);
+      r = checker.clearance(c.row(0), scope, below);
     }
     return py::cast(owned(r));
   }
@@ -96,7 +97,7 @@ py::object clearance(const CollisionChecker& checker, py::handle q, py::handle t
     py::gil_scoped_release release;
     parallel_chunks(c.count, n_threads, [&](Eigen::Index begin, Eigen::Index end) {
       for (Eigen::Index i = begin; i < end; ++i) {
-        const ClearanceResult r = checker.clearance(c.row(i), scope);
+        const ClearanceResult r = checker.clearance(c.row(i), scope, below);
         d[i] = r.distance;
         s[i] = r.self;
         for (int k = 0; k < 3; ++k) {
@@ -273,11 +274,14 @@ void bind_scene(py::module_& m) {
            "True when no checked pair overlaps: a bool for q (dof,), a bool array (N,) for "
            "(N, dof) (blocks vectorised across configurations, identical verdicts).")
       .def("clearance", &clearance, py::arg("q"), py::arg("threads") = 1, py::arg("scope") = "all",
+           py::arg("below") = std::numeric_limits<double>::infinity(),
            "Minimum signed distance over the checked pairs, m, with the pair and witnesses: a "
            "Clearance for q (dof,); for (N, dof) a dict of arrays 'distance' (N,), "
            "'self_collision' (N,), 'point_a', 'point_b', 'normal' (N, 3) and lists 'name_a', "
            "'name_b'. scope: 'all', 'obstacles' (robot-obstacle pairs only) or 'self' (self "
-           "pairs only); inf when the scope has no pair.")
+           "pairs only); inf when the scope has no pair. below (m): a cap for callers needing "
+           "only clearances under it: the same answer below it, inf (no pair) at or above it, "
+           "faster far from contact.")
       .def("clearance_gradient", &gradient, py::arg("q"), py::arg("threads") = 1,
            py::arg("scope") = "all",
            "d(clearance)/dq of the closest pair in `scope` (m/rad or m/m), witnesses and normal "

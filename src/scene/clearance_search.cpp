@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/core/queries.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
 #include <limits>
@@ -68,14 +69,19 @@ SignedDistanceResult CollisionChecker::pair_distance_below(std::size_t i, double
                                shape_pose(p.b, s), cutoff);
 }
 
+void CollisionChecker::check_below(double below) {
+  if (std::isnan(below)) throw InputError("CollisionChecker::clearance: the cap `below` is NaN");
+}
+
 ClearanceResult CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q,
-                                            ClearanceScope scope) const {
+                                            ClearanceScope scope, double below) const {
+  check_below(below);
   model_->check_configuration(q);
   Scratch& s = scratch();
   model_->compute_link_poses_unchecked(q.data(), s.link_poses.data());
   place(s.link_poses, s);
   s.q = q.data();
-  return nearest_pair(s, scope);
+  return nearest_pair(s, scope, nullptr, below);
 }
 
 ClearanceResult CollisionChecker::clearance_at(const std::vector<Eigen::Isometry3d>& link_poses,
@@ -86,14 +92,16 @@ ClearanceResult CollisionChecker::clearance_at(const std::vector<Eigen::Isometry
 }
 
 ClearanceResult CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q,
-                                            const PairScope& scope) const {
+                                            const PairScope& scope, double below) const {
+  check_below(below);
   const char* mask = self_mask(scope);
   model_->check_configuration(q);
   Scratch& s = scratch();
   model_->compute_link_poses_unchecked(q.data(), s.link_poses.data());
   place(s.link_poses, s);
   s.q = q.data();
-  return nearest_pair(s, scope.obstacles() ? ClearanceScope::kAll : ClearanceScope::kSelf, mask);
+  return nearest_pair(s, scope.obstacles() ? ClearanceScope::kAll : ClearanceScope::kSelf, mask,
+                      below);
 }
 
 ClearanceResult CollisionChecker::clearance_at(const std::vector<Eigen::Isometry3d>& link_poses,
@@ -111,28 +119,33 @@ ClearanceResult CollisionChecker::clearance_at(const std::vector<Eigen::Isometry
 // the bounding shapes when both sides have one); a pair first in the queue with its ball bound
 // gets the slab between the shapes' supporting planes (along the balls' direction, or a self
 // pair's warm-start direction); a pair first with its slab bound gets its exact signed
-// distance. `cut` is an upper bound on the minimum (the distance between two points of some
-// pair's shapes, from the slabs): a pair whose bound exceeds it cannot be the closest. The
-// search ends when the smallest bound left reaches the best exact value. Queue entries are
-// (lower bound, code): pairs 2 * pair + 1 once their slab bound is in, blocks negative.
+// distance. With a cap `below`, the search starts as if a pair at `below` had been found: pairs
+// bounded at or above it are never refined nor evaluated. `cut` is an upper bound on the minimum
+// (the distance between two points of some pair's shapes, from the slabs): a pair whose bound
+// exceeds it cannot be the closest. The search ends when the smallest bound left reaches the best
+// exact value. Queue entries are (lower bound, code): pairs 2 * pair + 1 once their slab bound is
+// in, blocks negative.
 struct CollisionChecker::NearestSearch {
   using Entry = std::pair<double, int>;
 
   NearestSearch(const CollisionChecker& checker, Scratch& scratch, ClearanceScope scope,
-                const char* mask)
+                const char* mask, double below)
       : c(checker),
         s(scratch),
         n_env(checker.environment_pairs_.size()),
         with_self(scope != ClearanceScope::kObstacles),
         with_environment(scope != ClearanceScope::kSelf),
-        self_mask(mask) {}
+        self_mask(mask),
+        cut(below) {
+    best.distance = below;  // no pair yet (link_a -1): run() reports +inf if none beats it
+  }
 
   const CollisionChecker& c;
   Scratch& s;
   std::size_t n_env;
   bool with_self, with_environment;  // the scope: which pairs are seeded
   const char* self_mask;             // per self block, 1: seeded (null: all)
-  double cut = std::numeric_limits<double>::infinity();
+  double cut;  // an upper bound on the answer (or the cap): pairs bounded above it are dropped
   ClearanceResult best;
 
   ClearanceResult run();
@@ -192,9 +205,12 @@ namespace {
 }  // namespace
 
 ClearanceResult CollisionChecker::nearest_pair(Scratch& s, ClearanceScope scope,
-                                               const char* self_mask) const {
-  NearestSearch search(*this, s, scope, self_mask);
-  return search.run();
+                                               const char* self_mask, double below) const {
+  NearestSearch search(*this, s, scope, self_mask, below);
+  ClearanceResult best = search.run();
+  // Nothing closer than the cap (or nothing checked): no pair, +inf.
+  if (best.link_a < 0) best.distance = std::numeric_limits<double>::infinity();
+  return best;
 }
 
 ClearanceResult CollisionChecker::NearestSearch::run() {

@@ -172,3 +172,17 @@ def test_clearance_scopes(arm, checker):
     assert np.isinf(bare.clearance(q[0], scope="obstacles").distance)
     with pytest.raises(hc.InputError, match="scope: expected 'all', 'obstacles' or 'self'"):
         checker.clearance(q, scope="world")
+
+
+def test_clearance_below_a_cap(arm, checker):
+    q = random_configurations(arm, 300, seed=10)
+    exact = checker.clearance(q, scope="obstacles")["distance"]
+    capped = checker.clearance(q, scope="obstacles", below=0.05, threads=2)
+    under = exact < 0.05 - 1e-9
+    assert under.any() and (~under).any()
+    np.testing.assert_allclose(capped["distance"][under], exact[under], rtol=0, atol=1e-12)
+    assert np.isinf(capped["distance"][exact > 0.05 + 1e-9]).all()
+    assert all(name == "" for name, u in zip(capped["name_a"], under) if not u)
+    assert checker.clearance(q[0], below=-np.inf).distance == np.inf
+    with pytest.raises(hc.InputError, match="below"):
+        checker.clearance(q[0], below=float("nan"))

@@ -56,6 +56,49 @@ TEST(ClearanceScope, EachScopeEqualsBruteForceOverItsPairs) {
   EXPECT_GT(overlapping, states / 20);
 }
 
+// A cap `below`: the brute-force minimum where it is under the cap, +inf with no pair where it
+// is over it; caps on both sides of each answer, at a fixed margin and at contact, for the
+// scope enum and the PairScope overload.
+TEST(ClearanceScope, CappedClearanceIsExactBelowTheCapAndInfiniteAbove) {
+  const ArmInScene w = arm_in_scene();
+  const CollisionChecker checker(w.model, w.matrix, w.scene);
+  const PairScope obstacles_only = checker.pair_scope(ClearanceScope::kObstacles);
+  std::mt19937_64 rng(29);
+  std::vector<Eigen::Isometry3d> poses;
+  int below = 0, above = 0;
+  const int states = test::sample_count(300);
+  for (int n = 0; n < states; ++n) {
+    const Eigen::VectorXd q = test::random_configuration(*w.model, rng);
+    w.model->compute_link_poses(q, poses);
+    Status status = Status::kConverged;
+    const double brute_self = test::brute_force_self_clearance(*w.model, w.matrix, poses, &status);
+    const double brute_obstacles = test::brute_force_obstacle_clearance(*w.model, w.scene, poses);
+    const double brute_all = std::min(brute_self, brute_obstacles);
+    const double tolerance = status == Status::kConverged ? 2e-10 : 1e-3;
+    for (double cap : {brute_all - 0.01, brute_all + 0.01, 0.05, 0.0, brute_obstacles + 0.002}) {
+      const ClearanceResult all = checker.clearance(q, ClearanceScope::kAll, cap);
+      const ClearanceResult obstacles = checker.clearance(q, obstacles_only, cap);
+      for (const auto& [r, truth] : {std::pair{&all, brute_all}, {&obstacles, brute_obstacles}}) {
+        if (truth < cap - tolerance) {
+          ASSERT_NEAR(r->distance, truth, tolerance) << "cap " << cap << ", q = " << q.transpose();
+          EXPECT_GE(r->link_a, 0);
+          ++below;
+        } else if (truth > cap + tolerance) {
+          ASSERT_TRUE(std::isinf(r->distance) && r->distance > 0)
+              << "cap " << cap << ", truth " << truth << ", got " << r->distance;
+          EXPECT_EQ(r->link_a, -1);
+          EXPECT_TRUE(r->name_a.empty());
+          ++above;
+        }
+      }
+    }
+  }
+  EXPECT_GT(below, states);
+  EXPECT_GT(above, states);
+  const Eigen::VectorXd q = w.model->default_configuration();
+  EXPECT_THROW(checker.clearance(q, ClearanceScope::kAll, std::nan("")), InputError);
+}
+
 TEST(ClearanceScope, NothingInScopeIsInfinite) {
   const ArmInScene w = arm_in_scene();
   const CollisionChecker no_scene(w.model, w.matrix, PlanningScene{});

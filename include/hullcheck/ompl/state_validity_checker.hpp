@@ -7,6 +7,7 @@
 #include <atomic>
 #include <hullcheck/ompl/joint_state_space.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
+#include <limits>
 #include <memory>
 
 namespace hullcheck {
@@ -34,6 +35,10 @@ class StateValidityChecker : public ::ompl::base::StateValidityChecker {
   bool isValid(const ::ompl::base::State* state, double& dist) const override;
   double clearance(const ::ompl::base::State* state) const override;
   ClearanceResult closest(const ::ompl::base::State* state) const;
+  /// clearance(state) for a caller that needs it only below `below`, m (a margin; not NaN):
+  /// the same value where it is below, +inf where the scope's pairs are all at or above it
+  /// (skipped on their bounds: cheaper far from contact). See CollisionChecker::clearance.
+  double clearance_below(const ::ompl::base::State* state, double below) const;
 
   /// Restricts clearance(), closest() and isValid(state, dist)'s dist to the pairs of `scope`
   /// (a PairScope of collision_checker(), e.g. from optimization_scope()); null: every checked
@@ -56,7 +61,8 @@ class StateValidityChecker : public ::ompl::base::StateValidityChecker {
   std::shared_ptr<const JointStateSpace> space_;
   std::shared_ptr<const CollisionChecker> checker_;
   std::shared_ptr<const PairScope> scope_;
-  ClearanceResult scoped_clearance(const Eigen::VectorXd& q) const;
+  ClearanceResult scoped_clearance(const Eigen::VectorXd& q,
+                                   double below = std::numeric_limits<double>::infinity()) const;
   mutable std::atomic<unsigned long> checks_{0};
 };
 

@@ -89,11 +89,16 @@ class CollisionChecker {
   /// same answers to the query tolerance, and the same answer for the same q on every thread.
   /// `scope` restricts the minimum to robot-obstacle or to self pairs; with none of its pairs
   /// checked, the result's distance is +inf.
+  /// `below`, m (not NaN): a cap for callers that only need clearances below it (a margin):
+  /// pairs whose bounds prove them at or above it are skipped, and when no pair is closer than
+  /// `below` the result has no pair (link_a -1) and distance +inf. Below the cap the answer is
+  /// the same as without one. Throws InputError for a NaN cap.
   ClearanceResult clearance(const Eigen::Ref<const Eigen::VectorXd>& q,
-                            ClearanceScope scope = ClearanceScope::kAll) const;
+                            ClearanceScope scope = ClearanceScope::kAll,
+                            double below = std::numeric_limits<double>::infinity()) const;
   /// clearance over the pairs of `scope` (see PairScope); +inf when it holds no checked pair.
-  ClearanceResult clearance(const Eigen::Ref<const Eigen::VectorXd>& q,
-                            const PairScope& scope) const;
+  ClearanceResult clearance(const Eigen::Ref<const Eigen::VectorXd>& q, const PairScope& scope,
+                            double below = std::numeric_limits<double>::infinity()) const;
   /// A PairScope of this checker: robot-obstacle pairs when `obstacles`, and the checked self
   /// link pairs listed (model link indices, either order). Throws InputError naming a listed
   /// pair that is not a checked link pair (checked_link_pairs()).
@@ -324,8 +329,11 @@ class CollisionChecker {
   const Eigen::Vector3d& center(int shape, Scratch& s) const;
   /// clearance() at the shapes placed by place() (clearance_search.cpp).
   /// With `self_mask` (per self block, 1: seeded), only those self blocks are searched.
-  ClearanceResult nearest_pair(Scratch& s, ClearanceScope scope,
-                               const char* self_mask = nullptr) const;
+  /// With `below`, pairs bounded at or above it are skipped (clearance's cap).
+  ClearanceResult nearest_pair(Scratch& s, ClearanceScope scope, const char* self_mask = nullptr,
+                               double below = std::numeric_limits<double>::infinity()) const;
+  /// Throws InputError when clearance's cap is NaN.
+  static void check_below(double below);
   /// The self mask of `scope`; throws InputError when the scope is not this checker's.
   const char* self_mask(const PairScope& scope) const;
   struct NearestSearch;
