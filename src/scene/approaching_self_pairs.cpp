@@ -33,12 +33,19 @@ std::vector<std::pair<int, int>> approaching_self_pairs(const CollisionChecker& 
   for (const auto& pair : checked) scopes.push_back(checker.pair_scope(false, {pair}));
   std::vector<double> low(checked.size(), std::numeric_limits<double>::infinity());
   std::vector<double> high(checked.size(), -std::numeric_limits<double>::infinity());
+  // A pair is decided once it has been seen clear of the margin and at two distances: later
+  // samples can only widen [low, high], so they cannot change its verdict.
+  const auto moving_clear = [&](std::size_t k) {
+    return high[k] > margin && high[k] - low[k] > 1e-9 * std::max(1.0, std::abs(high[k]));
+  };
+  std::vector<char> decided(checked.size(), 0);
+  std::size_t undecided = checked.size();
 
   std::mt19937_64 random(options.seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   Eigen::VectorXd q = fixed;
   std::vector<Eigen::Isometry3d> poses;
-  for (int sample = 0; sample <= options.samples; ++sample) {
+  for (int sample = 0; sample <= options.samples && undecided > 0; ++sample) {
     if (sample > 0) {  // sample 0 is `fixed` itself
       for (int v : variables) {
         double lo = lower[v], hi = upper[v];
@@ -48,17 +55,18 @@ std::vector<std::pair<int, int>> approaching_self_pairs(const CollisionChecker& 
     }
     model.compute_link_poses(q, poses);
     for (std::size_t k = 0; k < checked.size(); ++k) {
+      if (decided[k]) continue;
       const double d = checker.clearance_at(poses, scopes[k]).distance;
       low[k] = std::min(low[k], d);
       high[k] = std::max(high[k], d);
+      if (moving_clear(k)) decided[k] = 1, --undecided;
     }
   }
   // A pair none of the values moves keeps one distance (to the rounding of forward
   // kinematics); one never clear of the margin is held close by the robot's design.
   std::vector<std::pair<int, int>> moving;
   for (std::size_t k = 0; k < checked.size(); ++k) {
-    if (high[k] > margin && high[k] - low[k] > 1e-9 * std::max(1.0, std::abs(high[k])))
-      moving.push_back(checked[k]);
+    if (moving_clear(k)) moving.push_back(checked[k]);
   }
   return moving;
 }

@@ -28,9 +28,10 @@ struct SelfPairSampling {
 /// costs nothing while they stay clear of it. The decision is sampled (a pair clear of the
 /// margin only in configurations the samples miss is left out): it chooses which clearance to
 /// optimise and report, never what is valid (validity always checks every pair).
-/// Deterministic for a seed; cost: samples x checked pairs clearance queries (milliseconds for
-/// a 7-joint arm). Throws InputError on a bad variable index, configuration, margin (finite,
-/// > 0) or option.
+/// Deterministic for a seed; cost: at most samples x checked pairs clearance queries, a pair
+/// no longer queried once seen clear of the margin at two distances (later samples cannot
+/// change its verdict): the pairs held close or never moved take the whole sample. Throws
+/// InputError on a bad variable index, configuration, margin (finite, > 0) or option.
 std::vector<std::pair<int, int>> approaching_self_pairs(const CollisionChecker& checker,
                                                         const std::vector<int>& variables,
                                                         const Eigen::VectorXd& fixed, double margin,
