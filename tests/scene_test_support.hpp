@@ -55,6 +55,41 @@ inline std::string mbm_dir() {
   return s.empty() ? std::string() : s + "/benchmarks/mbm";
 }
 
+inline std::vector<MbmRobot> mbm_robots();
+
+/// Appends to the columns of q from `filled` on, up to its last column, pairs of states within a
+/// hair of contact (both ends of a 40-step bisection between two of the first `states` columns
+/// whose validity differs, 1e-12 of the segment apart); returns the columns filled. `Checker`:
+/// anything with is_valid(q) (a CollisionChecker).
+template <class Checker>
+int append_near_contact_states(const Checker& checker, int states, int filled, int tries,
+                               Eigen::MatrixXd& q) {
+  for (int t = 0; filled + 2 <= q.cols() && t < tries; ++t) {
+    const Eigen::VectorXd a = q.col(t % states), b = q.col((t * 7 + 3) % states);
+    const bool va = checker.is_valid(a);
+    if (va == checker.is_valid(b)) continue;
+    double lo = 0.0, hi = 1.0;  // is_valid(a + lo (b - a)) == va, at hi the other
+    for (int i = 0; i < 40; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (checker.is_valid(a + mid * (b - a)) == va ? lo : hi) = mid;
+    }
+    q.col(filled++) = a + lo * (b - a);
+    q.col(filled++) = a + hi * (b - a);
+  }
+  return filled;
+}
+
+/// The MBM robot `id` ("panda", "ur5") when present: false when ../shared is absent.
+inline bool find_mbm_robot(const std::string& id, MbmRobot* out) {
+  for (const MbmRobot& r : mbm_robots()) {
+    if (r.id == id) {
+      *out = r;
+      return true;
+    }
+  }
+  return false;
+}
+
 /// The MBM robots whose model and problems are present (empty when ../shared is absent).
 inline std::vector<MbmRobot> mbm_robots() {
   const std::string dir = mbm_dir();

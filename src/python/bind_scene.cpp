@@ -71,6 +71,23 @@ py::object is_valid(const CollisionChecker& checker, py::handle q, py::handle th
   return std::move(out);
 }
 
+py::object clearance_lower_bound(const CollisionChecker& checker, py::handle q, double exact_below,
+                                 py::handle threads) {
+  const Configurations c = configurations(q, "q", checker.model().variable_count());
+  py::array_t<double> out(static_cast<py::ssize_t>(c.count));
+  double* lower = out.mutable_data();
+  const int n_threads = thread_count(threads, c.count);
+  {
+    py::gil_scoped_release release;
+    parallel_chunks(c.count, n_threads, [&](Eigen::Index begin, Eigen::Index end) {
+      const Eigen::Map<const Eigen::MatrixXd> block(c.data + begin * c.dof, c.dof, end - begin);
+      checker.clearance_lower_bound_batch(block, exact_below, lower + begin);
+    });
+  }
+  if (c.single) return py::float_(lower[0]);
+  return std::move(out);
+}
+
 py::object clearance(const CollisionChecker& checker, py::handle q, py::handle threads,
                      const std::string& scope_name, double below) {
   const ClearanceScope scope = clearance_scope(scope_name);
@@ -282,6 +299,13 @@ void bind_scene(py::module_& m) {
            "pairs only); inf when the scope has no pair. below (m): a cap for callers needing "
            "only clearances under it: the same answer below it, inf (no pair) at or above it, "
            "faster far from contact.")
+      .def("clearance_lower_bound", &clearance_lower_bound, py::arg("q"),
+           py::arg("exact_below") = 0.0, py::arg("threads") = 1,
+           "Lower bounds on clearance() over every checked pair, m: a float for q (dof,), an "
+           "array (N,) for (N, dof). Exact (clearance()'s value) wherever the bound is below "
+           "max(exact_below, 0); elsewhere a bound from covering spheres, vectorised across "
+           "blocks of configurations, never above the clearance. A value above r proves the "
+           "configuration r clear.")
       .def("clearance_gradient", &gradient, py::arg("q"), py::arg("threads") = 1,
            py::arg("scope") = "all",
            "d(clearance)/dq of the closest pair in `scope` (m/rad or m/m), witnesses and normal "

@@ -68,6 +68,11 @@ struct CollisionChecker::Scratch {
   std::vector<std::uint64_t> cover_placed;
   std::uint64_t block_stamp = 0;
   std::vector<int> undecided[kPoseBlockLanes];
+  // clearance_lower_bound_batch: per block of pairs (environment blocks, then self blocks), its
+  // links' balls' gap per lane (rows of kPoseBlockLanes), and the blocks in the order refined
+  // (smallest gap over the lanes first).
+  std::vector<double> block_gaps;
+  std::vector<std::pair<double, int>> block_order;
   std::vector<MotionItem> motion_items, motion_items_next;
   // Self-block tables: the configuration and link poses at the centre of a cell being measured.
   Eigen::VectorXd table_q;

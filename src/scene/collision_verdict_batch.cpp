@@ -68,10 +68,20 @@ const double* CollisionChecker::place_cover(int begin, int end, Scratch& s) cons
          static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(begin)]) * 4 * kLanes;
 }
 
-void CollisionChecker::is_valid_batch(const Eigen::Ref<const Eigen::MatrixXd>& configurations,
-                                      bool* valid) const {
+CollisionChecker::LinkCover CollisionChecker::link_cover(int link_ball) const {
+  const int link = link_balls_[static_cast<std::size_t>(link_ball)].link;
+  LinkCover c;
+  c.first_shape = shape_begin_[static_cast<std::size_t>(link)];
+  c.end_shape = shape_begin_[static_cast<std::size_t>(link) + 1];
+  c.spheres = static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(c.end_shape)] -
+                                       cover_begin_[static_cast<std::size_t>(c.first_shape)]);
+  return c;
+}
+
+void CollisionChecker::check_columns(const Eigen::Ref<const Eigen::MatrixXd>& configurations,
+                                     const char* who) const {
   if (configurations.rows() != model_->variable_count()) {
-    throw InputError("CollisionChecker::is_valid_batch: configurations have " +
+    throw InputError(std::string("CollisionChecker::") + who + ": configurations have " +
                      std::to_string(configurations.rows()) + " rows, robot '" + model_->name() +
                      "' has " + std::to_string(model_->variable_count()) + " values");
   }
@@ -79,11 +89,35 @@ void CollisionChecker::is_valid_batch(const Eigen::Ref<const Eigen::MatrixXd>& c
     try {
       model_->check_configuration(configurations.col(k));
     } catch (const InputError& e) {
-      throw InputError("CollisionChecker::is_valid_batch: column " + std::to_string(k) + ": " +
-                       e.what());
+      throw InputError(std::string("CollisionChecker::") + who + ": column " + std::to_string(k) +
+                       ": " + e.what());
     }
   }
   require_current_padding();
+}
+
+void CollisionChecker::place_block(const Eigen::Ref<const Eigen::MatrixXd>& configurations,
+                                   Eigen::Index first, int count, Scratch& s) const {
+  model_->compute_link_poses_block(configurations.col(first).data(), configurations.outerStride(),
+                                   count, s.pose_block);
+  ++s.block_stamp;  // covering spheres are placed for this block when first needed
+  if (s.cover_placed.size() < shapes_.size()) s.cover_placed.resize(shapes_.size(), 0);
+  if (s.cover_world.size() < cover_.size() * 4 * kLanes) {
+    s.cover_world.resize(cover_.size() * 4 * kLanes);
+  }
+  const std::size_t balls = link_balls_.size();
+  s.ball_centers.resize(balls * 4 * kLanes);
+  for (std::size_t i = 0; i < balls; ++i) {
+    const LinkBall& ball = link_balls_[i];
+    place_sphere(s.pose_block, ball.link,
+                 Eigen::Vector4d(ball.center[0], ball.center[1], ball.center[2], ball.radius),
+                 s.ball_centers.data() + i * 4 * kLanes);
+  }
+}
+
+void CollisionChecker::is_valid_batch(const Eigen::Ref<const Eigen::MatrixXd>& configurations,
+                                      bool* valid) const {
+  check_columns(configurations, "is_valid_batch");
   Scratch& s = scratch();
   for (Eigen::Index first = 0; first < configurations.cols(); first += kLanes) {
     const int count =
@@ -95,22 +129,9 @@ void CollisionChecker::is_valid_batch(const Eigen::Ref<const Eigen::MatrixXd>& c
 void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& configurations,
                                       Eigen::Index first, int count, bool* valid,
                                       Scratch& s) const {
-  model_->compute_link_poses_block(configurations.col(first).data(), configurations.outerStride(),
-                                   count, s.pose_block);
-  ++s.block_stamp;  // covering spheres are placed for this block when first needed
-  if (s.cover_placed.size() < shapes_.size()) s.cover_placed.resize(shapes_.size(), 0);
-  if (s.cover_world.size() < cover_.size() * 4 * kLanes) {
-    s.cover_world.resize(cover_.size() * 4 * kLanes);
-  }
-  // Link balls as sphere rows (x, y, z, radius), then all of them against every obstacle box.
+  place_block(configurations, first, count, s);
+  // Link balls against every obstacle box.
   const std::size_t balls = link_balls_.size();
-  s.ball_centers.resize(balls * 4 * kLanes);
-  for (std::size_t i = 0; i < balls; ++i) {
-    const LinkBall& ball = link_balls_[i];
-    place_sphere(s.pose_block, ball.link,
-                 Eigen::Vector4d(ball.center[0], ball.center[1], ball.center[2], ball.radius),
-                 s.ball_centers.data() + i * 4 * kLanes);
-  }
   const std::size_t obstacles = boxes_.size();
   s.ball_box_clear.resize(balls * obstacles);
   detail::spheres_clear_of_boxes(s.ball_centers.data(), balls, box_values_.data(), obstacles,
@@ -172,19 +193,12 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
         lanes_in_use);
     if (near == 0) continue;
     // The two links' covering spheres, pair by pair, when they are few.
-    const int la = link_balls_[ia].link, lb = link_balls_[ib].link;
-    const int first_a = shape_begin_[static_cast<std::size_t>(la)];
-    const int end_a = shape_begin_[static_cast<std::size_t>(la) + 1];
-    const int first_b = shape_begin_[static_cast<std::size_t>(lb)];
-    const int end_b = shape_begin_[static_cast<std::size_t>(lb) + 1];
-    const auto na = static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(end_a)] -
-                                             cover_begin_[static_cast<std::size_t>(first_a)]);
-    const auto nb = static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(end_b)] -
-                                             cover_begin_[static_cast<std::size_t>(first_b)]);
+    const LinkCover a = link_cover(static_cast<int>(ia)), b2 = link_cover(static_cast<int>(ib));
     std::uint8_t apart = 0;
-    if (na * nb <= kMaxSpherePairs) {
-      apart = detail::spheres_apart(place_cover(first_a, end_a, s), na,
-                                    place_cover(first_b, end_b, s), nb, kSlack);
+    if (a.spheres * b2.spheres <= kMaxSpherePairs) {
+      apart =
+          detail::spheres_apart(place_cover(a.first_shape, a.end_shape, s), a.spheres,
+                                place_cover(b2.first_shape, b2.end_shape, s), b2.spheres, kSlack);
     }
     for (int k = 0; k < count; ++k) {
       if (!(near & ~apart & ~colliding & (1u << k))) continue;

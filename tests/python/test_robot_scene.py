@@ -174,6 +174,23 @@ def test_clearance_scopes(arm, checker):
         checker.clearance(q, scope="world")
 
 
+def test_clearance_lower_bound(arm, checker):
+    q = random_configurations(arm, 400, seed=11)
+    exact = checker.clearance(q)["distance"]
+    for exact_below in (0.0, 0.01):
+        lower = checker.clearance_lower_bound(q, exact_below=exact_below, threads=2)
+        assert lower.shape == (400,)
+        assert (lower <= exact + 1e-9).all()
+        assert (lower >= np.minimum(exact, exact_below) - 1e-9).all()
+        measured = lower < exact_below
+        np.testing.assert_allclose(lower[measured], exact[measured], rtol=0, atol=1e-9)
+        assert (lower < exact - 1e-6).any()  # bounds, not only exact values
+    assert checker.clearance_lower_bound(q[3]) == pytest.approx(
+        checker.clearance_lower_bound(q[:8])[3], abs=0)
+    with pytest.raises(hc.InputError, match="exact_below is NaN"):
+        checker.clearance_lower_bound(q, exact_below=float("nan"))
+
+
 def test_clearance_below_a_cap(arm, checker):
     q = random_configurations(arm, 300, seed=10)
     exact = checker.clearance(q, scope="obstacles")["distance"]

@@ -42,19 +42,7 @@ void compare(const CollisionChecker& checker, const MotionPlanRequest& request,
   }
   // Near contact: bisect between a valid and an invalid random state down to 1e-12 of the
   // segment; both ends are within a hair of touching.
-  int filled = states;
-  for (int tries = 0; filled < states + 2 * boundary && tries < 100 * boundary; ++tries) {
-    const Eigen::VectorXd a = q.col(tries % states), b = q.col((tries * 7 + 3) % states);
-    const bool va = checker.is_valid(a);
-    if (va == checker.is_valid(b)) continue;
-    double lo = 0.0, hi = 1.0;  // is_valid(a + lo (b - a)) == va, at hi the other
-    for (int i = 0; i < 40; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (checker.is_valid(a + mid * (b - a)) == va ? lo : hi) = mid;
-    }
-    q.col(filled++) = a + lo * (b - a);
-    q.col(filled++) = a + hi * (b - a);
-  }
+  const int filled = test::append_near_contact_states(checker, states, states, 100 * boundary, q);
   q.conservativeResize(Eigen::NoChange, filled);
   stats->near_contact += filled - states;
   std::vector<char> scalar(static_cast<std::size_t>(filled));
@@ -90,12 +78,9 @@ void compare(const CollisionChecker& checker, const MotionPlanRequest& request,
 }
 
 void batch_agrees(const char* id, int per_family) {
-  const test::MbmRobot* robot = nullptr;
-  const auto robots = test::mbm_robots();
-  for (const auto& r : robots) {
-    if (r.id == id) robot = &r;
-  }
-  if (robot == nullptr) GTEST_SKIP() << "MotionBenchMaker " << id << " absent";
+  test::MbmRobot found;
+  if (!test::find_mbm_robot(id, &found)) GTEST_SKIP() << "MotionBenchMaker " << id << " absent";
+  const test::MbmRobot* robot = &found;
   const auto model = test::cached_model(robot->urdf);
   const Srdf srdf = read_srdf_file(robot->srdf);
   const AllowedCollisionMatrix matrix = AllowedCollisionMatrix::from_srdf(*model, srdf);

@@ -116,6 +116,24 @@ class CollisionChecker {
   /// scalar forward kinematics. Throws InputError naming the first bad column. Thread-safe; no
   /// allocation after a thread's first call.
   void is_valid_batch(const Eigen::Ref<const Eigen::MatrixXd>& configurations, bool* valid) const;
+  /// Lower bounds on clearance() (every checked pair, m) for many configurations: the columns
+  /// of `configurations`, bounds written to lower[0 .. cols()), with
+  ///   min(clearance, e) <= lower <= clearance,  e = max(exact_below, 0),
+  /// clearance being the exact minimum over the checked pairs at the column (clearance()'s, to
+  /// its queries' tolerance): where lower is below e it is that minimum. Per pair, a bound from
+  /// covering spheres (each shape's contain it) against the obstacle's box (which contains the
+  /// obstacle) or the other shape's spheres, raised by a self block's table when measured
+  /// (measure_self_tables), all lanes of a block of kPoseBlockLanes columns at once after
+  /// vectorised forward kinematics, less 1e-9 m for the block poses' rounding; a pair whose
+  /// bound is not positive or is below e gets its exact signed distance (GJK/EPA at the
+  /// column's scalar poses, only below the smallest bound so far). Links' balls skip pairs that
+  /// cannot go under it. Far from contact the bound is as loose as the spheres (millimetres to
+  /// centimetres); raise `exact_below` for exact values wherever the clearance is below it.
+  /// For roadmaps and datasets: a column whose bound exceeds r is certainly r clear. Throws
+  /// InputError naming the first bad column, or for a NaN exact_below. Thread-safe; no
+  /// allocation after a thread's first call.
+  void clearance_lower_bound_batch(const Eigen::Ref<const Eigen::MatrixXd>& configurations,
+                                   double exact_below, double* lower) const;
   /// The same for link poses from RobotModel::compute_link_poses. clearance_at has no
   /// configuration to look the grids up with: its queries start cold (same answers, slower).
   bool is_valid_at(const std::vector<Eigen::Isometry3d>& link_poses) const;
@@ -315,6 +333,28 @@ class CollisionChecker {
   /// The covering spheres of robot shapes [begin, end) at the block's poses, placed on first
   /// use in the block: rows of kPoseBlockLanes (x, y, z, radius per sphere), consecutive.
   const double* place_cover(int begin, int end, Scratch& s) const;
+  /// Throws InputError unless `configurations` has variable_count() rows and every column is a
+  /// configuration of the model (naming `who` and the column); std::logic_error after a padding
+  /// change.
+  void check_columns(const Eigen::Ref<const Eigen::MatrixXd>& configurations,
+                     const char* who) const;
+  /// The robot shapes [first_shape, end_shape) of link ball `link_ball`'s link and their
+  /// covering spheres' count.
+  struct LinkCover {
+    int first_shape = 0, end_shape = 0;
+    std::size_t spheres = 0;
+  };
+  LinkCover link_cover(int link_ball) const;
+  /// Forward kinematics of columns [first, first + count) into s.pose_block (SIMD), the link
+  /// balls placed into s.ball_centers (rows of kPoseBlockLanes), covering spheres made ready
+  /// for place_cover.
+  void place_block(const Eigen::Ref<const Eigen::MatrixXd>& configurations, Eigen::Index first,
+                   int count, Scratch& s) const;
+  /// clearance_lower_bound_batch: raises gap[0 .. count) (a lower bound on block b's pairs'
+  /// signed distance per lane; environment blocks first, then self blocks) with the pairs'
+  /// covering spheres and, for a self block where they leave it below max(e, 0+), its table.
+  void refine_block_gap(const Eigen::Ref<const Eigen::MatrixXd>& configurations, Eigen::Index first,
+                        int count, std::size_t b, double e, double* gap, Scratch& s) const;
   /// is_valid_batch for one block of up to kPoseBlockLanes columns starting at `first`.
   void is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& configurations, Eigen::Index first,
                       int count, bool* valid, Scratch& s) const;
