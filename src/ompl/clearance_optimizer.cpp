@@ -229,9 +229,7 @@ class Optimizer {
   // The scope's closest pair when closer than the margin; +inf (no pair) otherwise: the cost
   // density is flat from the margin up and the gradient needs no pair there.
   ClearanceResult scoped_clearance(const Eigen::VectorXd& q) const {
-    const std::shared_ptr<const PairScope>& scope = validity_.clearance_scope();
-    return scope ? checker_.clearance(q, *scope, options_.margin)
-                 : checker_.clearance(q, ClearanceScope::kAll, options_.margin);
+    return validity_.scoped_clearance(q, options_.margin);
   }
   void evaluate(std::size_t i) {
     w_.closest[i] = scoped_clearance(w_.q[i]);

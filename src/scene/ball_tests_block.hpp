@@ -11,6 +11,9 @@
 namespace hullcheck::detail {
 
 inline constexpr std::size_t kBoxValues = 15;
+/// Covering-sphere pairs of a self block (two links) compared for a whole block at most: the
+/// batch queries bound larger blocks by their links' balls instead.
+inline constexpr std::size_t kMaxSpherePairs = 256;
 
 /// out[i * m + j]: the lanes where sphere i is clear of box j.
 void spheres_clear_of_boxes(const double* spheres, std::size_t n, const double* boxes,

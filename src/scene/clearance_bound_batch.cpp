@@ -30,8 +30,14 @@ constexpr int kLanes = kPoseBlockLanes;
 // Metres taken off every bound: far above the block poses' rounding (below 1e-14 m on the
 // robots tested) so that a bound never exceeds the clearance at the scalar poses.
 constexpr double kRounding = 1e-9;
-// Covering-sphere pairs of a self block compared at most (beyond, its links' balls bound it).
-constexpr std::size_t kMaxSpherePairs = 256;
+
+// True when `gap` (a lower bound on a block's distance at a lane) less kRounding is a term: a
+// bound that is positive and at least e.
+bool is_term(double gap, double e) {
+  const double term = gap - kRounding;
+  return term > 0.0 && term >= e;
+}
+
 }  // namespace
 
 void CollisionChecker::clearance_lower_bound_batch(
@@ -88,9 +94,8 @@ void CollisionChecker::clearance_lower_bound_batch(
       if (!lowers) continue;
       refine_block_gap(configurations, first, count, static_cast<std::size_t>(b), e, gap, s);
       for (int k = 0; k < count; ++k) {
-        const double term = gap[k] - kRounding;
-        if (term > 0.0 && term >= e) {
-          cap[k] = std::min(cap[k], term);
+        if (is_term(gap[k], e)) {
+          cap[k] = std::min(cap[k], gap[k] - kRounding);
         } else {
           exact[k] = true;
         }
@@ -121,9 +126,8 @@ void CollisionChecker::refine_block_gap(const Eigen::Ref<const Eigen::MatrixXd>&
         box_values_.data() + static_cast<std::size_t>(block.obstacle) * detail::kBoxValues;
     for (int p = block.begin; p < block.end; ++p) {
       const int shape = environment_pairs_[static_cast<std::size_t>(p)].shape;
-      const auto n = static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(shape) + 1] -
-                                              cover_begin_[static_cast<std::size_t>(shape)]);
-      detail::lower_sphere_box_gap(place_cover(shape, shape + 1, s), n, box, spheres);
+      detail::lower_sphere_box_gap(place_cover(shape, shape + 1, s),
+                                   cover_spheres(shape, shape + 1), box, spheres);
     }
     for (int k = 0; k < count; ++k) gap[k] = std::max(gap[k], spheres[k]);
     return;
@@ -131,15 +135,16 @@ void CollisionChecker::refine_block_gap(const Eigen::Ref<const Eigen::MatrixXd>&
   // Two links: their covering spheres when few enough, then the block's table where the
   // spheres leave no term.
   const SelfBlock& block = self_blocks_[b - n_env];
-  const LinkCover a = link_cover(block.link_a), c = link_cover(block.link_b);
-  if (a.spheres * c.spheres <= kMaxSpherePairs) {
-    detail::lower_sphere_pair_gap(place_cover(a.first_shape, a.end_shape, s), a.spheres,
-                                  place_cover(c.first_shape, c.end_shape, s), c.spheres, spheres);
+  const LinkCover cover_a = link_cover(block.link_a), cover_b = link_cover(block.link_b);
+  if (cover_a.spheres * cover_b.spheres <= detail::kMaxSpherePairs) {
+    detail::lower_sphere_pair_gap(
+        place_cover(cover_a.first_shape, cover_a.end_shape, s), cover_a.spheres,
+        place_cover(cover_b.first_shape, cover_b.end_shape, s), cover_b.spheres, spheres);
     for (int k = 0; k < count; ++k) gap[k] = std::max(gap[k], spheres[k]);
   }
   for (int k = 0; k < count; ++k) {
     double table_lower = 0.0, table_upper = 0.0;
-    if (!(gap[k] - kRounding > 0.0 && gap[k] - kRounding >= e) &&
+    if (!is_term(gap[k], e) &&
         self_block_bounds(static_cast<int>(b - n_env), configurations.col(first + k).data(),
                           &table_lower, &table_upper)) {
       gap[k] = std::max(gap[k], table_lower);

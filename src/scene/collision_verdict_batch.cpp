@@ -31,9 +31,6 @@ constexpr int kLanes = kPoseBlockLanes;
 // Metres of slack on every ball test: far above the block poses' rounding, far below any gap
 // the balls are meant to find.
 constexpr double kSlack = 1e-9;
-// Covering-sphere pairs of a self block tested for the whole block at most (beyond, the lanes
-// the link balls leave go to the exact tests).
-constexpr std::size_t kMaxSpherePairs = 256;
 
 // A sphere (x, y, z in `link`'s frame, radius) at the block's poses: rows x, y, z, radius of
 // kLanes values into `out`.
@@ -73,9 +70,13 @@ CollisionChecker::LinkCover CollisionChecker::link_cover(int link_ball) const {
   LinkCover c;
   c.first_shape = shape_begin_[static_cast<std::size_t>(link)];
   c.end_shape = shape_begin_[static_cast<std::size_t>(link) + 1];
-  c.spheres = static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(c.end_shape)] -
-                                       cover_begin_[static_cast<std::size_t>(c.first_shape)]);
+  c.spheres = cover_spheres(c.first_shape, c.end_shape);
   return c;
+}
+
+std::size_t CollisionChecker::cover_spheres(int first_shape, int end_shape) const {
+  return static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(end_shape)] -
+                                  cover_begin_[static_cast<std::size_t>(first_shape)]);
 }
 
 void CollisionChecker::check_columns(const Eigen::Ref<const Eigen::MatrixXd>& configurations,
@@ -157,8 +158,7 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
     for (int p = block.begin; p < block.end && (spheres_clear & ~clear & lanes_in_use); ++p) {
       const int shape = environment_pairs_[static_cast<std::size_t>(p)].shape;
       const double* spheres = place_cover(shape, shape + 1, s);
-      const auto n = static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(shape) + 1] -
-                                              cover_begin_[static_cast<std::size_t>(shape)]);
+      const std::size_t n = cover_spheres(shape, shape + 1);
       s.sphere_box_clear.resize(n);
       detail::spheres_clear_of_boxes(spheres, n, box_values_.data() + o * detail::kBoxValues, 1,
                                      kSlack, s.sphere_box_clear.data());
@@ -193,12 +193,13 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
         lanes_in_use);
     if (near == 0) continue;
     // The two links' covering spheres, pair by pair, when they are few.
-    const LinkCover a = link_cover(static_cast<int>(ia)), b2 = link_cover(static_cast<int>(ib));
+    const LinkCover cover_a = link_cover(static_cast<int>(ia));
+    const LinkCover cover_b = link_cover(static_cast<int>(ib));
     std::uint8_t apart = 0;
-    if (a.spheres * b2.spheres <= kMaxSpherePairs) {
-      apart =
-          detail::spheres_apart(place_cover(a.first_shape, a.end_shape, s), a.spheres,
-                                place_cover(b2.first_shape, b2.end_shape, s), b2.spheres, kSlack);
+    if (cover_a.spheres * cover_b.spheres <= detail::kMaxSpherePairs) {
+      apart = detail::spheres_apart(
+          place_cover(cover_a.first_shape, cover_a.end_shape, s), cover_a.spheres,
+          place_cover(cover_b.first_shape, cover_b.end_shape, s), cover_b.spheres, kSlack);
     }
     for (int k = 0; k < count; ++k) {
       if (!(near & ~apart & ~colliding & (1u << k))) continue;

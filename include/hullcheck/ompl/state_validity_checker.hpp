@@ -39,6 +39,10 @@ class StateValidityChecker : public ::ompl::base::StateValidityChecker {
   /// the same value where it is below, +inf where the scope's pairs are all at or above it
   /// (skipped on their bounds: cheaper far from contact). See CollisionChecker::clearance.
   double clearance_below(const ::ompl::base::State* state, double below) const;
+  /// closest() at a full configuration q (the model's values) rather than a state, capped at
+  /// `below` as CollisionChecker::clearance is; not counted in check_count().
+  ClearanceResult scoped_clearance(const Eigen::VectorXd& q,
+                                   double below = std::numeric_limits<double>::infinity()) const;
 
   /// Restricts clearance(), closest() and isValid(state, dist)'s dist to the pairs of `scope`
   /// (a PairScope of collision_checker(), e.g. from optimization_scope()); null: every checked
@@ -61,8 +65,6 @@ class StateValidityChecker : public ::ompl::base::StateValidityChecker {
   std::shared_ptr<const JointStateSpace> space_;
   std::shared_ptr<const CollisionChecker> checker_;
   std::shared_ptr<const PairScope> scope_;
-  ClearanceResult scoped_clearance(const Eigen::VectorXd& q,
-                                   double below = std::numeric_limits<double>::infinity()) const;
   mutable std::atomic<unsigned long> checks_{0};
 };
 

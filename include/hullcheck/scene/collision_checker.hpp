@@ -120,18 +120,18 @@ class CollisionChecker {
   /// of `configurations`, bounds written to lower[0 .. cols()), with
   ///   min(clearance, e) <= lower <= clearance,  e = max(exact_below, 0),
   /// clearance being the exact minimum over the checked pairs at the column (clearance()'s, to
-  /// its queries' tolerance): where lower is below e it is that minimum. Per pair, a bound from
-  /// covering spheres (each shape's contain it) against the obstacle's box (which contains the
-  /// obstacle) or the other shape's spheres, raised by a self block's table when measured
-  /// (measure_self_tables), all lanes of a block of kPoseBlockLanes columns at once after
-  /// vectorised forward kinematics, less 1e-9 m for the block poses' rounding; a pair whose
-  /// bound is not positive or is below e gets its exact signed distance (GJK/EPA at the
-  /// column's scalar poses, only below the smallest bound so far). Links' balls skip pairs that
-  /// cannot go under it. Far from contact the bound is as loose as the spheres (millimetres to
-  /// centimetres); raise `exact_below` for exact values wherever the clearance is below it.
-  /// For roadmaps and datasets: a column whose bound exceeds r is certainly r clear. Throws
-  /// InputError naming the first bad column, or for a NaN exact_below. Thread-safe; no
-  /// allocation after a thread's first call.
+  /// its queries' tolerance): where lower is below e it is that minimum. Blocks of
+  /// kPoseBlockLanes columns: vectorised forward kinematics, then per block of pairs a bound
+  /// from its links' balls, refined in increasing order of that bound by covering spheres (each
+  /// shape's contain it) against the obstacle's box (which contains the obstacle) or the other
+  /// link's spheres, and by a self block's table when measured (measure_self_tables), all lanes
+  /// at once, less 1e-9 m for the block poses' rounding. A column where some block's bound is
+  /// not positive or is below e gets min(bound, clearance) from clearance()'s search capped at
+  /// its bound (see `below`). Far from contact the bound is as loose as the spheres
+  /// (millimetres to centimetres); raise `exact_below` for exact values wherever the clearance
+  /// is below it. For roadmaps and datasets: a column whose bound exceeds r is certainly r
+  /// clear. Throws InputError naming the first bad column, or for a NaN exact_below.
+  /// Thread-safe; no allocation after a thread's first call.
   void clearance_lower_bound_batch(const Eigen::Ref<const Eigen::MatrixXd>& configurations,
                                    double exact_below, double* lower) const;
   /// The same for link poses from RobotModel::compute_link_poses. clearance_at has no
@@ -345,6 +345,8 @@ class CollisionChecker {
     std::size_t spheres = 0;
   };
   LinkCover link_cover(int link_ball) const;
+  /// The covering spheres of robot shapes [first_shape, end_shape), counted.
+  std::size_t cover_spheres(int first_shape, int end_shape) const;
   /// Forward kinematics of columns [first, first + count) into s.pose_block (SIMD), the link
   /// balls placed into s.ball_centers (rows of kPoseBlockLanes), covering spheres made ready
   /// for place_cover.
