@@ -26,6 +26,11 @@ stage() {
   echo "== $1"
 }
 
+# Prints how long the current stage has run so far (its build, before its tests).
+lap() {
+  echo "   ($1 after $((SECONDS - stage_start)) s)"
+}
+
 stage "clang-format"
 git ls-files '*.hpp' '*.cpp' | xargs clang-format --dry-run --Werror
 
@@ -33,6 +38,7 @@ stage "Release build and tests"
 cmake -S . -B build/ci-release -DCMAKE_BUILD_TYPE=Release -DHULLCHECK_BUILD_BENCHMARKS=ON \
   "${launcher[@]}" >/dev/null
 cmake --build build/ci-release -j"$jobs"
+lap "built"
 (cd build/ci-release && ctest --output-on-failure -j"$jobs")
 
 stage "AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
@@ -43,6 +49,7 @@ cmake -S . -B build/ci-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$sanitizer_flags" -DHULLCHECK_SANITIZE=ON \
   -DHULLCHECK_BUILD_PYTHON=OFF "${launcher[@]}" >/dev/null
 cmake --build build/ci-sanitize -j"$jobs" --target hullcheck_tests
+lap "built"
 # The program's end-to-end test (`cli`) runs in the Release stage only: this stage builds the
 # test binaries, not the program.
 (cd build/ci-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \

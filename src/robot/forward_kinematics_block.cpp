@@ -24,6 +24,20 @@ namespace hullcheck {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+// The angle a minus the multiple k of 2 pi nearest to it, to within 1e-15 rad for |a| below
+// 2^19 x 2 pi (3.3e6 rad, beyond RobotModel::kMaxContinuousValue; past it within |a| x 1e-16
+// on CPUs without FMA): Highway's Sin and Cos are accurate on [-39000, 39000] only, and a
+// continuous joint takes up to 1e6 rad. Cody-Waite: 2 pi split into c1 + c2 + c3, c1 and c2 of
+// 34 significant bits, so that k c1 and k c2 are exact for |k| < 2^19 and a - k c1 is exact
+// (Sterbenz); only the last two subtractions round.
+template <class D, class V>
+HWY_INLINE V reduce_angle(D d, V a) {
+  const V k = hn::Round(hn::Mul(a, hn::Set(d, 0x1.45f306dc9c883p-3)));  // a / (2 pi)
+  V r = hn::NegMulAdd(k, hn::Set(d, 0x1.921fb54480000p+2), a);
+  r = hn::NegMulAdd(k, hn::Set(d, -0x1.e973dcb380000p-33), r);
+  return hn::NegMulAdd(k, hn::Set(d, -0x1.9cceba3f91f19p-68), r);
+}
+
 // steps[0..n) in kinematic order; q: variable-major (kPoseBlockLanes values per variable);
 // out: LinkPoseBlock::values.
 void LinkPosesBlock(const detail::KinematicBlockStep* steps, std::size_t n, const double* q,
@@ -69,7 +83,7 @@ void LinkPosesBlock(const detail::KinematicBlockStep* steps, std::size_t n, cons
             t[i] = hn::MulAdd(value, along, t[i]);
           }
         } else if (st.axis_index >= 0) {
-          const V angle = hn::Mul(value, hn::Set(d, st.axis_sign));
+          const V angle = reduce_angle(d, hn::Mul(value, hn::Set(d, st.axis_sign)));
           const V c = hn::Cos(d, angle);
           const V s = hn::Sin(d, angle);
           const int ci = (st.axis_index + 1) % 3;
@@ -82,8 +96,9 @@ void LinkPosesBlock(const detail::KinematicBlockStep* steps, std::size_t n, cons
           }
         } else {
           // Rodrigues: rot = c I + (1 - c) a a^T + s [a]x, then r <- r * rot.
-          const V c = hn::Cos(d, value);
-          const V s = hn::Sin(d, value);
+          const V angle = reduce_angle(d, value);
+          const V c = hn::Cos(d, angle);
+          const V s = hn::Sin(d, angle);
           const V one_c = hn::Sub(hn::Set(d, 1.0), c);
           const double* ax = st.axis;
           V rot[9];

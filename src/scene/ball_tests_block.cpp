@@ -48,6 +48,26 @@ HWY_INLINE V box_gap2(D d, V x, V y, V z, const double* b) {
   return gap2;
 }
 
+void PlaceSpheres(const double* pose, const double* spheres, std::size_t n, double* out) {
+  const hn::ScalableTag<double> d;
+  const std::size_t lanes = hn::Lanes(d);
+  for (std::size_t base = 0; base < kL; base += lanes) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* c = spheres + 4 * i;
+      double* o = out + i * 4 * kL + base;
+      const auto cx = hn::Set(d, c[0]), cy = hn::Set(d, c[1]), cz = hn::Set(d, c[2]);
+      for (std::size_t r = 0; r < 3; ++r) {
+        const double* row = pose + 3 * r * kL + base;
+        auto v = hn::MulAdd(hn::LoadU(d, row), cx, hn::LoadU(d, pose + (9 + r) * kL + base));
+        v = hn::MulAdd(hn::LoadU(d, row + kL), cy, v);
+        v = hn::MulAdd(hn::LoadU(d, row + 2 * kL), cz, v);
+        hn::StoreU(v, d, o + r * kL);
+      }
+      hn::StoreU(hn::Set(d, c[3]), d, o + 3 * kL);
+    }
+  }
+}
+
 void SpheresClearOfBoxes(const double* spheres, std::size_t n, const double* boxes, std::size_t m,
                          double slack, std::uint8_t* out) {
   const hn::ScalableTag<double> d;
@@ -122,9 +142,14 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace hullcheck::detail {
 
+HWY_EXPORT(PlaceSpheres);
 HWY_EXPORT(SpheresClearOfBoxes);
 HWY_EXPORT(SpheresApart);
 HWY_EXPORT(SpheresInBox);
+
+void place_spheres(const double* pose, const double* spheres, std::size_t n, double* out) {
+  HWY_DYNAMIC_DISPATCH(PlaceSpheres)(pose, spheres, n, out);
+}
 
 std::uint8_t spheres_in_box(const double* spheres, std::size_t n, const double* box, double slack) {
   return HWY_DYNAMIC_DISPATCH(SpheresInBox)(spheres, n, box, slack);

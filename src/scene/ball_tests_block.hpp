@@ -15,6 +15,11 @@ inline constexpr std::size_t kBoxValues = 15;
 /// batch queries bound larger blocks by their links' balls instead.
 inline constexpr std::size_t kMaxSpherePairs = 256;
 
+/// Places `n` spheres given in one link's frame (x, y, z, radius each, m) at that link's poses:
+/// `pose` is the link's 12 rows of kPoseBlockLanes values (LinkPoseBlock::entry(link, 0)),
+/// `out` receives n spheres as rows x, y, z, radius (model frame). Rounding: a few ulps of the
+/// centres' coordinates, far below the tests' slack.
+void place_spheres(const double* pose, const double* spheres, std::size_t n, double* out);
 /// out[i * m + j]: the lanes where sphere i is clear of box j.
 void spheres_clear_of_boxes(const double* spheres, std::size_t n, const double* boxes,
                             std::size_t m, double slack, std::uint8_t* out);

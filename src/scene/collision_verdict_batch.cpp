@@ -36,16 +36,7 @@ constexpr double kSlack = 1e-9;
 // kLanes values into `out`.
 void place_sphere(const LinkPoseBlock& poses, int link, const Eigen::Vector4d& sphere,
                   double* out) {
-  for (int r = 0; r < 3; ++r) {
-    const double* r0 = poses.entry(link, 3 * r);
-    const double* r1 = poses.entry(link, 3 * r + 1);
-    const double* r2 = poses.entry(link, 3 * r + 2);
-    const double* t = poses.entry(link, 9 + r);
-    for (int k = 0; k < kLanes; ++k) {
-      out[r * kLanes + k] = r0[k] * sphere[0] + r1[k] * sphere[1] + r2[k] * sphere[2] + t[k];
-    }
-  }
-  for (int k = 0; k < kLanes; ++k) out[3 * kLanes + k] = sphere[3];
+  detail::place_spheres(poses.entry(link, 0), sphere.data(), 1, out);
 }
 
 }  // namespace
@@ -55,11 +46,9 @@ const double* CollisionChecker::place_cover(int begin, int end, Scratch& s) cons
     if (s.cover_placed[static_cast<std::size_t>(shape)] == s.block_stamp) continue;
     s.cover_placed[static_cast<std::size_t>(shape)] = s.block_stamp;
     const int link = shapes_[static_cast<std::size_t>(shape)].link;
-    for (int c = cover_begin_[static_cast<std::size_t>(shape)];
-         c < cover_begin_[static_cast<std::size_t>(shape) + 1]; ++c) {
-      place_sphere(s.pose_block, link, cover_[static_cast<std::size_t>(c)],
-                   s.cover_world.data() + static_cast<std::size_t>(c) * 4 * kLanes);
-    }
+    const auto c = static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(shape)]);
+    detail::place_spheres(s.pose_block.entry(link, 0), cover_[c].data(),
+                          cover_spheres(shape, shape + 1), s.cover_world.data() + c * 4 * kLanes);
   }
   return s.cover_world.data() +
          static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(begin)]) * 4 * kLanes;

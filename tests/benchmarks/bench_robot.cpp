@@ -4,6 +4,7 @@
 //   build-bench/tests/benchmarks/bench_robot [google-benchmark flags]
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <hullcheck/scene.hpp>
@@ -82,6 +83,27 @@ void fk_hullcheck(benchmark::State& state, const RobotCase& c) {
   }
   benchmark::DoNotOptimize(sink);
   state.counters["links"] = static_cast<double>(model.links().size());
+  set_per_item(state, qs.size());
+}
+
+// The same configurations kPoseBlockLanes at a time (compute_link_poses_block), per configuration.
+void fk_hullcheck_block(benchmark::State& state, const RobotCase& c) {
+  const auto model = hullcheck::RobotModel::from_urdf_file(c.urdf);
+  const std::vector<Eigen::VectorXd> qs = random_configurations(model);
+  constexpr int kLanes = hullcheck::kPoseBlockLanes;
+  Eigen::MatrixXd columns(model.variable_count(), static_cast<Eigen::Index>(qs.size()));
+  for (std::size_t k = 0; k < qs.size(); ++k) columns.col(static_cast<Eigen::Index>(k)) = qs[k];
+  hullcheck::LinkPoseBlock block;
+  double sink = 0.0;
+  for (auto _ : state) {
+    for (Eigen::Index first = 0; first < columns.cols(); first += kLanes) {
+      const auto count = static_cast<int>(std::min<Eigen::Index>(kLanes, columns.cols() - first));
+      model.compute_link_poses_block(columns.col(first).data(), columns.outerStride(), count,
+                                     block);
+      sink += block.values.back();
+    }
+  }
+  benchmark::DoNotOptimize(sink);
   set_per_item(state, qs.size());
 }
 
@@ -183,6 +205,7 @@ void load(benchmark::State& state, const RobotCase& c) {
 int main(int argc, char** argv) {
   for (const RobotCase& c : robot_cases()) {
     benchmark::RegisterBenchmark(("fk/hullcheck/" + c.id).c_str(), fk_hullcheck, c);
+    benchmark::RegisterBenchmark(("fk/hullcheck_block/" + c.id).c_str(), fk_hullcheck_block, c);
     benchmark::RegisterBenchmark(("fk/kdl_chain/" + c.id).c_str(), fk_kdl_chain, c);
     benchmark::RegisterBenchmark(("self_collision/" + c.id).c_str(), self_collision, c);
     benchmark::RegisterBenchmark(("self_distance/" + c.id).c_str(), self_distance, c);
