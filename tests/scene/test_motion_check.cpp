@@ -274,6 +274,9 @@ TEST(MotionCheckFcl, WithSelfTablesPandaMotionsAgreeWithDenseFcl) {
 }
 
 TEST(MotionCheckFcl, WithSelfTablesUr5MotionsAgreeWithDenseFcl) {
+  // Measuring the UR5's tables takes most of this test (37 s under ASan): sanitizer builds run
+  // the same code on the Panda's tables (the test above) and this one in the Release stage.
+  if (test::kSanitizerDivisor > 1) GTEST_SKIP() << "Release builds only (see the Panda's)";
   for (const test::MbmRobot& robot : test::mbm_robots()) {
     if (robot.id == "ur5") return dense_fcl_check(robot, 200, true);
   }
