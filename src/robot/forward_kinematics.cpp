@@ -1,6 +1,8 @@
 // Forward kinematics of RobotModel: the load-time plan (fixed joints folded into constant
 // offsets) and the allocation-free evaluation.
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <hullcheck/core/errors.hpp>
 #include <hullcheck/robot/robot_model.hpp>
 #include <sstream>
@@ -8,6 +10,8 @@
 namespace hullcheck {
 
 void RobotModel::build_kinematics() {
+  static std::atomic<std::uint64_t> next_id{1};
+  kinematics_id_ = next_id++;
   // anchor[l]: the link whose frame l is rigidly attached to (-1: model frame), and the
   // constant transform anchor -> l.
   std::vector<int> anchor(links_.size(), -1);

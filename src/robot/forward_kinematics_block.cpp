@@ -148,11 +148,15 @@ HWY_EXPORT(LinkPosesBlock);
 void RobotModel::compute_link_poses_block(const double* q, std::ptrdiff_t stride, int count,
                                           LinkPoseBlock& out) const {
   constexpr std::size_t kL = kPoseBlockLanes;
-  // This thread's scratch: the steps in plain form and the configurations variable-major.
+  // This thread's scratch: the steps in plain form (converted when the model is not the one
+  // they were converted from) and the configurations variable-major.
   thread_local std::vector<detail::KinematicBlockStep> steps;
+  thread_local std::uint64_t steps_of = 0;  // the kinematics_id_ they were converted from
   thread_local std::vector<double> values;
-  steps.resize(steps_.size());
-  for (std::size_t k = 0; k < steps_.size(); ++k) {
+  if (steps_of != kinematics_id_) steps.clear();
+  steps_of = kinematics_id_;
+  for (std::size_t k = steps.size(); k < steps_.size(); ++k) {
+    steps.emplace_back();
     const KinematicStep& from = steps_[k];
     detail::KinematicBlockStep& to = steps[k];
     to.link = from.link;

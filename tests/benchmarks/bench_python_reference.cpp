@@ -1,7 +1,8 @@
 // The C++ side of tests/benchmarks/bench_python.py: validity of the same configurations, timed
 // in C++ (a loop of CollisionChecker::is_valid, and is_valid_batch as the Python binding calls
 // it), so that the binding's overhead is measured in the same run on the same states.
-//   bench_python_reference URDF SRDF SCENE STATES.f64 DOF REPEATS
+//   bench_python_reference URDF SRDF SCENE STATES.f64 DOF REPEATS [--tables]
+// --tables: measure the self tables first (CollisionChecker::measure_self_tables, not timed).
 // STATES.f64: N x DOF float64 values, row after row (numpy's tofile). Prints, best of REPEATS:
 //   loop_ns_per_state X
 //   batch_ns_per_state Y
@@ -35,14 +36,17 @@ double best_ns_per_state(int repeats, Eigen::Index count, const Body& body) {
 }  // namespace
 
 int main(int argc, char** argv) try {
-  if (argc != 7) {
-    std::fprintf(stderr, "usage: %s URDF SRDF SCENE STATES.f64 DOF REPEATS\n", argv[0]);
+  const bool tables = argc == 8 && std::string(argv[7]) == "--tables";
+  if (argc != 7 && !tables) {
+    std::fprintf(stderr, "usage: %s URDF SRDF SCENE STATES.f64 DOF REPEATS [--tables]\n", argv[0]);
     return 2;
   }
   auto model = std::make_shared<const RobotModel>(RobotModel::from_urdf_file(argv[1]));
   const Srdf srdf = read_srdf_file(argv[2]);
   const CollisionChecker checker(model, AllowedCollisionMatrix::from_srdf(*model, srdf),
                                  read_planning_scene(argv[3], *model));
+  // --tables: the self blocks' distance tables measured first (once per model, not timed).
+  if (tables) checker.measure_self_tables();
   const int dof = std::stoi(argv[5]), repeats = std::max(1, std::stoi(argv[6]));
   if (dof != model->variable_count()) {
     std::fprintf(stderr, "%s: DOF %d, the robot has %d values\n", argv[4], dof,

@@ -465,6 +465,29 @@ TEST(RobotFk, BlockReducesLargeContinuousAngles) {
   hwy::SetSupportedTargetsForTest(0);
 }
 
+// The block evaluation keeps a per-thread copy of a model's steps: models used in turn on one
+// thread (and a model destroyed, another built in its place) each get their own.
+TEST(RobotFk, BlockFollowsTheModelInUse) {
+  const RobotModel arm = RobotModel::from_urdf_file(test::own_arm().urdf);
+  LinkPoseBlock block;
+  std::vector<Eigen::Isometry3d> poses;
+  const auto check = [&](const RobotModel& model) {
+    const Eigen::VectorXd q = Eigen::VectorXd::Constant(model.variable_count(), 0.3);
+    model.compute_link_poses_block(q.data(), q.size(), 1, block);
+    model.compute_link_poses(q, poses);
+    ASSERT_EQ(block.values.size(), poses.size() * 12 * kPoseBlockLanes);
+    for (std::size_t l = 0; l < poses.size(); ++l) {
+      EXPECT_LE((block.pose(static_cast<int>(l), 0).matrix() - poses[l].matrix()).norm(), 1e-12)
+          << "link " << l;
+    }
+  };
+  for (int round = 0; round < 3; ++round) {
+    const RobotModel synthetic = RobotModel::from_urdf_string(kSyntheticUrdf, ".");
+    check(arm);
+    check(synthetic);
+  }
+}
+
 // Hand-computed poses of the own arm: its README gives the zero configuration (flange at
 // z = 1.256 m, tcp at z = 1.371 m) and the layout makes a few others easy.
 TEST(RobotFk, OwnArmKnownPoses) {

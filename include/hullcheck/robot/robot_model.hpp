@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <hullcheck/core/shape.hpp>
 #include <hullcheck/robot/convex_decomposition.hpp>
 #include <hullcheck/robot/link_pose_block.hpp>
@@ -263,6 +264,9 @@ class RobotModel {
   std::vector<Joint> joints_;
   std::vector<int> variable_joints_;
   std::vector<KinematicStep> steps_;
+  // Unique per build_kinematics() (copies share it with their identical steps_): keys the
+  // per-thread plain copy of steps_ that compute_link_poses_block keeps.
+  std::uint64_t kinematics_id_ = 0;
   std::map<std::string, int> link_by_name_;
   std::map<std::string, int> joint_by_name_;
   std::map<std::string, double> link_padding_;
