@@ -148,32 +148,34 @@ HWY_EXPORT(LinkPosesBlock);
 void RobotModel::compute_link_poses_block(const double* q, std::ptrdiff_t stride, int count,
                                           LinkPoseBlock& out) const {
   constexpr std::size_t kL = kPoseBlockLanes;
-  // This thread's scratch: the steps in plain form (converted when the model is not the one
-  // they were converted from) and the configurations variable-major.
+  // This thread's scratch: the steps in plain form, converted again whenever they are not this
+  // model's (another model's id; or a moved-from model, whose steps_ is empty), and the
+  // configurations variable-major.
   thread_local std::vector<detail::KinematicBlockStep> steps;
   thread_local std::uint64_t steps_of = 0;  // the kinematics_id_ they were converted from
   thread_local std::vector<double> values;
-  if (steps_of != kinematics_id_) steps.clear();
-  steps_of = kinematics_id_;
-  for (std::size_t k = steps.size(); k < steps_.size(); ++k) {
-    steps.emplace_back();
-    const KinematicStep& from = steps_[k];
-    detail::KinematicBlockStep& to = steps[k];
-    to.link = from.link;
-    to.anchor = from.anchor;
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) to.offset_rotation[3 * i + j] = from.offset_rotation(i, j);
-      to.offset_translation[i] = from.offset_translation[i];
-      to.axis[i] = from.axis[i];
+  if (steps_of != kinematics_id_ || steps.size() != steps_.size()) {
+    steps.resize(steps_.size());
+    for (std::size_t k = 0; k < steps_.size(); ++k) {
+      const KinematicStep& from = steps_[k];
+      detail::KinematicBlockStep& to = steps[k];
+      to.link = from.link;
+      to.anchor = from.anchor;
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) to.offset_rotation[3 * i + j] = from.offset_rotation(i, j);
+        to.offset_translation[i] = from.offset_translation[i];
+        to.axis[i] = from.axis[i];
+      }
+      to.type = from.type == JointType::kFixed       ? detail::KinematicBlockStep::kFixed
+                : from.type == JointType::kPrismatic ? detail::KinematicBlockStep::kPrismatic
+                                                     : detail::KinematicBlockStep::kRevolute;
+      to.axis_index = from.axis_index;
+      to.axis_sign = from.axis_sign;
+      to.variable = from.variable;
+      to.multiplier = from.multiplier;
+      to.offset = from.offset;
     }
-    to.type = from.type == JointType::kFixed       ? detail::KinematicBlockStep::kFixed
-              : from.type == JointType::kPrismatic ? detail::KinematicBlockStep::kPrismatic
-                                                   : detail::KinematicBlockStep::kRevolute;
-    to.axis_index = from.axis_index;
-    to.axis_sign = from.axis_sign;
-    to.variable = from.variable;
-    to.multiplier = from.multiplier;
-    to.offset = from.offset;
+    steps_of = kinematics_id_;
   }
   const auto variables = static_cast<std::size_t>(variable_count());
   values.resize(variables * kL);

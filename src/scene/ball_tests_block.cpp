@@ -52,15 +52,16 @@ void PlaceSpheres(const double* pose, const double* spheres, std::size_t n, doub
   const hn::ScalableTag<double> d;
   const std::size_t lanes = hn::Lanes(d);
   for (std::size_t base = 0; base < kL; base += lanes) {
+    hn::Vec<decltype(d)> p[12];  // the pose's rows, loaded once for all the spheres
+    for (std::size_t e = 0; e < 12; ++e) p[e] = hn::LoadU(d, pose + e * kL + base);
     for (std::size_t i = 0; i < n; ++i) {
       const double* c = spheres + 4 * i;
       double* o = out + i * 4 * kL + base;
       const auto cx = hn::Set(d, c[0]), cy = hn::Set(d, c[1]), cz = hn::Set(d, c[2]);
       for (std::size_t r = 0; r < 3; ++r) {
-        const double* row = pose + 3 * r * kL + base;
-        auto v = hn::MulAdd(hn::LoadU(d, row), cx, hn::LoadU(d, pose + (9 + r) * kL + base));
-        v = hn::MulAdd(hn::LoadU(d, row + kL), cy, v);
-        v = hn::MulAdd(hn::LoadU(d, row + 2 * kL), cz, v);
+        auto v = hn::MulAdd(p[3 * r], cx, p[9 + r]);
+        v = hn::MulAdd(p[3 * r + 1], cy, v);
+        v = hn::MulAdd(p[3 * r + 2], cz, v);
         hn::StoreU(v, d, o + r * kL);
       }
       hn::StoreU(hn::Set(d, c[3]), d, o + 3 * kL);

@@ -420,10 +420,12 @@ TEST(RobotFk, SyntheticTreeMatchesKdl) {
   expect_fk_matches_kdl("synthetic", kSyntheticUrdf, model, 1000);
 }
 
-// Continuous joints accept values up to +-RobotModel::kMaxContinuousValue (1e6 rad); the block
-// evaluation's sine and cosine are accurate on +-39000 rad only, so it reduces angles first.
-// Every SIMD target against the scalar evaluation (libm's exact reduction), both rotation
-// paths (about a frame axis, and Rodrigues about a general one).
+// Continuous joints accept values up to +-RobotModel::kMaxContinuousValue (1e6 rad); Highway
+// documents its sine and cosine as accurate on +-39000 rad only, so the block evaluation
+// reduces angles first (the Highway measured here is in fact accurate up to 3e6 rad, so this
+// guards the reduction and a Highway that keeps to its documented range). Every SIMD target
+// against the scalar evaluation (libm's exact reduction), both rotation paths (about a frame
+// axis, and Rodrigues about a general one).
 TEST(RobotFk, BlockReducesLargeContinuousAngles) {
   const char* urdf = R"(<robot name="spinner">
   <link name="base"/><link name="a"/><link name="b"/>
