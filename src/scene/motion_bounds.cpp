@@ -4,10 +4,107 @@
 #include <cmath>
 #include <hullcheck/core/errors.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
+#include <variant>
 
 #include "collision_checker_internals.hpp"
 
 namespace hullcheck {
+
+namespace {
+
+// The largest value of `bound` over the points of collision shape `cs` (padding included),
+// where `bound(p)` is at least the distance of link-frame point p from a line (over every
+// configuration of the joints in between): over a polyhedron's vertices (the distance from a
+// line is convex, so largest at one), for round shapes at their centres plus their radius (the
+// distance from a line changes by at most the distance moved).
+template <typename Bound>
+double farthest(const CollisionShape& cs, const Bound& bound) {
+  const auto at = [&](const Eigen::Vector3d& local) { return bound(cs.origin * local); };
+  const Shape::Geometry& g = cs.shape.geometry();
+  double d = 0.0;
+  if (const auto* box = std::get_if<Box>(&g)) {
+    for (int c = 0; c < 8; ++c) {
+      d = std::max(d, at(Eigen::Vector3d((c & 1 ? 1 : -1) * box->half_extents.x(),
+                                         (c & 2 ? 1 : -1) * box->half_extents.y(),
+                                         (c & 4 ? 1 : -1) * box->half_extents.z())));
+    }
+  } else if (const auto* sphere = std::get_if<Sphere>(&g)) {
+    d = at(Eigen::Vector3d::Zero()) + sphere->radius;
+  } else if (const auto* capsule = std::get_if<Capsule>(&g)) {  // axis z: its caps' centres
+    d = std::max(at(Eigen::Vector3d(0, 0, capsule->half_length)),
+                 at(Eigen::Vector3d(0, 0, -capsule->half_length))) +
+        capsule->radius;
+  } else if (const auto* cylinder = std::get_if<Cylinder>(&g)) {  // axis z: its discs' centres
+    d = std::max(at(Eigen::Vector3d(0, 0, cylinder->half_length)),
+                 at(Eigen::Vector3d(0, 0, -cylinder->half_length))) +
+        cylinder->radius;
+  } else {
+    for (const Eigen::Vector3d& v : std::get<ConvexHull>(g).vertices()) d = std::max(d, at(v));
+  }
+  return d + cs.shape.margin();
+}
+
+// Where a link below a revolute joint J sits relative to J's axis, in J's child link frame
+// (the axis: the line through its origin along J's unit axis, fixed in that frame). A point p
+// of the link (its own frame) lies at most distance(p) from the axis, for every value of the
+// joints between J and the link:
+//   kRigid: no moving joint in between; the link's frame is `rigid` (exact).
+//   kOneJoint: one moving joint K in between: `rigid` maps K's joint frame into J's child
+//     frame, `after` the link's frame into K's child frame. K turns a point about its axis
+//     (the part along the axis stays, the rest keeps its length) or slides it by at most
+//     `travel`.
+//   kFar: further down: the link's origin lies within `reach` of the axis.
+struct AxisBound {
+  enum Kind { kRigid, kOneJoint, kFar } kind = kRigid;
+  Eigen::Isometry3d rigid = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d after = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d turn_axis = Eigen::Vector3d::Zero();  // K's, in K's joint frame
+  bool turns = true;                                    // K revolute (else prismatic)
+  double travel = 0.0;                                  // K's prismatic travel
+  double reach = 0.0;
+
+  double distance(const Eigen::Vector3d& p, const Eigen::Vector3d& axis) const {
+    const auto from_axis = [&](const Eigen::Vector3d& x) {
+      return (x - x.dot(axis) * axis).norm();
+    };
+    switch (kind) {
+      case kRigid:
+        return from_axis(rigid * p);
+      case kOneJoint: {
+        const Eigen::Vector3d z = after * p;
+        if (!turns) return from_axis(rigid * z) + travel;
+        const Eigen::Vector3d along = z.dot(turn_axis) * turn_axis;
+        return from_axis(rigid * along) + (z - along).norm();
+      }
+      default:
+        return reach + p.norm();
+    }
+  }
+  // The bound of the link below `joint` (origin: this link's frame -> the joint frame).
+  AxisBound below(const Joint& joint, const Eigen::Vector3d& axis) const {
+    AxisBound out = *this;
+    const bool moves = joint.type != JointType::kFixed;
+    const double slide = joint.type == JointType::kPrismatic ? joint.limit_reach() : 0.0;
+    if (kind == kRigid && moves) {
+      out.kind = kOneJoint;
+      out.rigid = rigid * joint.origin;
+      out.after = Eigen::Isometry3d::Identity();
+      out.turn_axis = joint.axis;
+      out.turns = joint.type != JointType::kPrismatic;
+      out.travel = slide;
+    } else if (kind == kRigid) {
+      out.rigid = rigid * joint.origin;
+    } else if (kind == kOneJoint && !moves) {
+      out.after = after * joint.origin;
+    } else {  // a second moving joint, or further down
+      out.kind = kFar;
+      out.reach = distance(joint.origin.translation(), axis) + slide;
+    }
+    return out;
+  }
+};
+
+}  // namespace
 
 // above[l][j]: joint j is on the path from the root to link l.
 std::vector<std::vector<bool>> CollisionChecker::joints_above_links() const {
@@ -61,9 +158,13 @@ const CollisionChecker::MotionLevers& CollisionChecker::motion_levers() const {
 void CollisionChecker::build_motion_levers(MotionLevers& out) const {
   const int n = static_cast<int>(model_->links().size());
   const std::vector<std::vector<bool>> above = joints_above_links();
-  // Lever arms. For each movable joint, the largest distance from its origin to any point of
-  // each shape it moves: reach[l] bounds the distance from the joint's origin to the frame
-  // origin of link l below it (accumulated along the chain, prismatic travel included).
+  // Lever arms: for each movable joint, a bound on how far any point of each shape it moves
+  // travels per unit of the joint's own value. A prismatic joint moves them by one. A revolute
+  // joint turns them on circles about its axis, a line fixed in its child link's frame: a
+  // point's lever is its distance from that line, bounded over every configuration of the
+  // joints in between (AxisBound: exact on the child link and rigidly attached ones, with one
+  // joint in between nearly so, further down through the link origin's distance); never more
+  // than the bound through the shape's bounding ball.
   const int variables = model_->variable_count();
   out.lever = Eigen::VectorXd::Zero(variables);
   out.shape_levers = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(shapes_.size()), variables);
@@ -73,27 +174,35 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
   // arm(j, s): motion of shape s per unit of joint j's own value (0 when j does not move s).
   Eigen::MatrixXd arm =
       Eigen::MatrixXd::Zero(joint_count, static_cast<Eigen::Index>(shapes_.size()));
+  // reach[l]: distance from the joint's origin to link l's frame origin (the ball bound).
   std::vector<double> reach(static_cast<std::size_t>(n));
+  std::vector<AxisBound> axis_bound(static_cast<std::size_t>(n));
   for (int ji = 0; ji < joint_count; ++ji) {
     const Joint& joint = model_->joint(ji);
     if (joint.type == JointType::kFixed) continue;
+    const bool prismatic = joint.type == JointType::kPrismatic;
     std::vector<int> stack{joint.child_link};
     reach[static_cast<std::size_t>(joint.child_link)] = 0.0;
+    axis_bound[static_cast<std::size_t>(joint.child_link)] = AxisBound{};
     while (!stack.empty()) {
       const int l = stack.back();
       stack.pop_back();
+      const AxisBound& here = axis_bound[static_cast<std::size_t>(l)];
       for (int sh = shape_begin_[static_cast<std::size_t>(l)];
            sh < shape_begin_[static_cast<std::size_t>(l) + 1]; ++sh) {
         const RobotShape& rs = shapes_[static_cast<std::size_t>(sh)];
-        arm(ji, sh) = joint.type == JointType::kPrismatic
-                          ? 1.0
-                          : reach[static_cast<std::size_t>(l)] + rs.center.norm() + rs.radius;
+        const CollisionShape& cs = model_->link(l).shapes[static_cast<std::size_t>(rs.shape)];
+        const double ball = reach[static_cast<std::size_t>(l)] + rs.center.norm() + rs.radius;
+        arm(ji, sh) = prismatic ? 1.0 : std::min(ball, farthest(cs, [&](const Eigen::Vector3d& p) {
+                                                   return here.distance(p, joint.axis);
+                                                 }));
       }
       for (int k : model_->link(l).child_joints) {
         const Joint& child = model_->joint(k);
         const double travel = child.type == JointType::kPrismatic ? child.limit_reach() : 0.0;
         reach[static_cast<std::size_t>(child.child_link)] =
             reach[static_cast<std::size_t>(l)] + child.origin.translation().norm() + travel;
+        axis_bound[static_cast<std::size_t>(child.child_link)] = here.below(child, joint.axis);
         stack.push_back(child.child_link);
       }
     }

@@ -150,7 +150,15 @@ int main(int argc, char** argv) {
   bool no_tables = false;
   app.add_flag("--no-tables", no_tables,
                "do not measure the self-collision tables (CollisionChecker::measure_self_tables)");
+  std::vector<std::string> checkers{"vamp", "hullcheck certified", "hullcheck discrete 1/32",
+                                    "hullcheck discrete default", "vamp own RRTC"};
+  app.add_option("--checkers", checkers,
+                 "the checkers to run (default: all; e.g. for a profile of one)")
+      ->delimiter(',');
   CLI11_PARSE(app, argc, argv);
+  const auto chosen = [&](const std::string& name) {
+    return std::find(checkers.begin(), checkers.end(), name) != checkers.end();
+  };
   // Re-seeding OMPL per attempt makes it log that sampling already started: silenced.
   ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
   using namespace hullcheck;
@@ -247,12 +255,14 @@ int main(int argc, char** argv) {
     };
     for (const std::string name :
          {"vamp", "hullcheck certified", "hullcheck discrete 1/32", "hullcheck discrete default"}) {
+      if (!chosen(name)) continue;
       const double t = attempt(name);
       if (t >= 0.0) {
         ++solved[name];
         times[name].push_back(t);
       }
     }
+    if (!chosen("vamp own RRTC")) continue;
     double best = -1.0;
     for (int r = 0; r < repeats; ++r) {
       const double t = peer->plan(start, goal);

@@ -202,7 +202,8 @@ class CollisionChecker {
                                  const MotionCheckOptions& options = {}) const;
 
  private:
-  friend struct SelfTableTestAccess;  // tests/scene/test_self_tables.cpp: the tables' bounds
+  friend struct SelfTableTestAccess;    // tests/scene/test_self_tables.cpp: the tables' bounds
+  friend struct MotionLeverTestAccess;  // tests/scene/test_motion_levers.cpp: the lever arms
   struct RobotShape {
     int link;
     int shape;

@@ -1,0 +1,272 @@
+// The lever arms behind every motion bound (src/scene/motion_bounds.cpp), shape by shape and
+// pair by pair, against forward kinematics: along random straight joint-space motions
+//   - every point of a robot shape travels (polyline through dense samples, at most the path
+//     length) no more than the shape's levers dotted with |q1 - q0|;
+//   - for every self pair, the two shapes' points travel, in the frame of the links' deepest
+//     common ancestor (where their distance is decided), no more than the pair's levers dotted
+//     with |q1 - q0| between them.
+// A bound that is too tight (an axis distance measured in the wrong frame, a joint forgotten)
+// fails; the ratio printed shows how much is left. The own arm, hand-made chains with fixed,
+// prismatic and offset joints, and every shared robot when ../shared is present.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <hullcheck/robot.hpp>
+#include <hullcheck/scene/collision_checker.hpp>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "collision_checker_internals.hpp"
+#include "robot_test_support.hpp"
+#include "scene_test_support.hpp"
+
+namespace hullcheck {
+
+// The checker's lever arms, for this test only (a friend of CollisionChecker).
+struct MotionLeverTestAccess {
+  static int shapes(const CollisionChecker& c) { return static_cast<int>(c.shapes_.size()); }
+  static std::pair<int, int> link_and_shape(const CollisionChecker& c, int shape) {
+    const auto& rs = c.shapes_[static_cast<std::size_t>(shape)];
+    return {rs.link, rs.shape};
+  }
+  static int self_pairs(const CollisionChecker& c) {
+    return static_cast<int>(c.self_pairs_.size());
+  }
+  static std::pair<int, int> pair_shapes(const CollisionChecker& c, int pair) {
+    const auto& p = c.self_pairs_[static_cast<std::size_t>(pair)];
+    return {p.a, p.b};
+  }
+  static double shape_rate(const CollisionChecker& c, int shape, const Eigen::VectorXd& abs_dq) {
+    return c.motion_levers().shape_levers.row(shape).dot(abs_dq);
+  }
+  static double pair_rate(const CollisionChecker& c, int pair, const Eigen::VectorXd& abs_dq) {
+    return c.motion_levers().self_pair_levers.row(pair).dot(abs_dq);
+  }
+};
+
+namespace {
+
+// Points of a collision shape (its link's frame) whose travel bounds every point's: a rigid
+// motion's point velocity is affine in the point, so a path length is convex in it and largest
+// at an extreme point (round shapes: points on their rims and poles, a close approximation).
+std::vector<Eigen::Vector3d> extreme_points(const CollisionShape& cs) {
+  std::vector<Eigen::Vector3d> local;
+  const Shape::Geometry& g = cs.shape.geometry();
+  const auto circle = [&](double r, double z) {
+    for (int i = 0; i < 24; ++i) {
+      const double a = 2.0 * M_PI * i / 24.0;
+      local.emplace_back(r * std::cos(a), r * std::sin(a), z);
+    }
+  };
+  if (const auto* box = std::get_if<Box>(&g)) {
+    for (int c = 0; c < 8; ++c) {
+      local.emplace_back((c & 1 ? 1 : -1) * box->half_extents.x(),
+                         (c & 2 ? 1 : -1) * box->half_extents.y(),
+                         (c & 4 ? 1 : -1) * box->half_extents.z());
+    }
+  } else if (const auto* sphere = std::get_if<Sphere>(&g)) {
+    circle(sphere->radius, 0.0);
+    local.emplace_back(0, 0, sphere->radius);
+    local.emplace_back(0, 0, -sphere->radius);
+  } else if (const auto* cap = std::get_if<Capsule>(&g)) {
+    circle(cap->radius, cap->half_length);
+    circle(cap->radius, -cap->half_length);
+    local.emplace_back(0, 0, cap->half_length + cap->radius);
+    local.emplace_back(0, 0, -cap->half_length - cap->radius);
+  } else if (const auto* cyl = std::get_if<Cylinder>(&g)) {
+    circle(cyl->radius, cyl->half_length);
+    circle(cyl->radius, -cyl->half_length);
+  } else {
+    local = std::get<ConvexHull>(g).vertices();
+  }
+  std::vector<Eigen::Vector3d> out;
+  for (const Eigen::Vector3d& p : local) out.push_back(cs.origin * p);
+  return out;
+}
+
+int depth(const RobotModel& model, int link) {
+  int d = 0;
+  for (; model.link(link).parent_joint >= 0; ++d) {
+    link = model.joint(model.link(link).parent_joint).parent_link;
+  }
+  return d;
+}
+
+int parent(const RobotModel& model, int link) {
+  return model.joint(model.link(link).parent_joint).parent_link;
+}
+
+int common_ancestor(const RobotModel& model, int a, int b) {
+  int da = depth(model, a), db = depth(model, b);
+  for (; da > db; --da) a = parent(model, a);
+  for (; db > da; --db) b = parent(model, b);
+  while (a != b) a = parent(model, a), b = parent(model, b);
+  return a;
+}
+
+struct LeverStats {
+  int motions = 0;
+  int shape_checks = 0;
+  int pair_checks = 0;
+  double worst_shape_ratio = 0.0;  // largest travel / bound seen (<= 1 when the bounds hold)
+  double worst_pair_ratio = 0.0;
+};
+
+// Random motions q0 -> q1 (`sample` draws each end), `steps` forward kinematics samples each.
+template <typename Sample>
+void check_levers(const CollisionChecker& checker, int motions, int steps, Sample sample,
+                  LeverStats* stats) {
+  using Access = MotionLeverTestAccess;
+  const RobotModel& model = checker.model();
+  std::vector<Eigen::Isometry3d> poses;
+  for (int m = 0; m < motions; ++m) {
+    const Eigen::VectorXd q0 = sample(), q1 = sample();
+    const Eigen::VectorXd abs_dq = (q1 - q0).cwiseAbs();
+    std::vector<std::vector<Eigen::Isometry3d>> trajectory;  // per step, per link
+    for (int k = 0; k <= steps; ++k) {
+      model.compute_link_poses(q0 + (k / static_cast<double>(steps)) * (q1 - q0), poses);
+      trajectory.push_back(poses);
+    }
+    // Largest path length of a shape's points, in the frame of link `frame` (-1: the world).
+    std::map<std::pair<int, int>, double> memo;
+    const auto travel = [&](int shape, int frame) {
+      const auto key = std::make_pair(shape, frame);
+      if (const auto it = memo.find(key); it != memo.end()) return it->second;
+      const auto [link, index] = Access::link_and_shape(checker, shape);
+      const std::vector<Eigen::Vector3d> points =
+          extreme_points(model.link(link).shapes[static_cast<std::size_t>(index)]);
+      double worst = 0.0;
+      for (const Eigen::Vector3d& p : points) {
+        double length = 0.0;
+        Eigen::Vector3d prev;
+        for (int k = 0; k <= steps; ++k) {
+          const auto& at = trajectory[static_cast<std::size_t>(k)];
+          const Eigen::Isometry3d to_frame =
+              frame < 0 ? Eigen::Isometry3d::Identity()
+                        : Eigen::Isometry3d(at[static_cast<std::size_t>(frame)].inverse());
+          const Eigen::Vector3d x = to_frame * at[static_cast<std::size_t>(link)] * p;
+          if (k > 0) length += (x - prev).norm();
+          prev = x;
+        }
+        worst = std::max(worst, length);
+      }
+      memo[key] = worst;
+      return worst;
+    };
+    for (int sh = 0; sh < Access::shapes(checker); ++sh) {
+      const double bound = Access::shape_rate(checker, sh, abs_dq);
+      const double moved = travel(sh, -1);
+      const auto [link, index] = Access::link_and_shape(checker, sh);
+      EXPECT_LE(moved, bound * (1.0 + 1e-9) + 1e-12)
+          << model.link(link).name << " shape " << index << "\nq0 = " << q0.transpose()
+          << "\nq1 = " << q1.transpose();
+      if (bound > 1e-9)
+        stats->worst_shape_ratio = std::max(stats->worst_shape_ratio, moved / bound);
+      ++stats->shape_checks;
+    }
+    for (int p = 0; p < Access::self_pairs(checker); ++p) {
+      const auto [a, b] = Access::pair_shapes(checker, p);
+      const int link_a = Access::link_and_shape(checker, a).first;
+      const int link_b = Access::link_and_shape(checker, b).first;
+      const int ancestor = common_ancestor(model, link_a, link_b);
+      const double moved = travel(a, ancestor) + travel(b, ancestor);
+      const double bound = Access::pair_rate(checker, p, abs_dq);
+      EXPECT_LE(moved, bound * (1.0 + 1e-9) + 1e-12)
+          << model.link(link_a).name << " / " << model.link(link_b).name
+          << "\nq0 = " << q0.transpose() << "\nq1 = " << q1.transpose();
+      if (bound > 1e-9) stats->worst_pair_ratio = std::max(stats->worst_pair_ratio, moved / bound);
+      ++stats->pair_checks;
+    }
+    ++stats->motions;
+  }
+}
+
+void report(const std::string& id, const LeverStats& s) {
+  std::printf(
+      "[ levers   ] %s: %d motions, %d shape and %d pair checks; largest travel / bound: shapes "
+      "%.3f, pairs %.3f\n",
+      id.c_str(), s.motions, s.shape_checks, s.pair_checks, s.worst_shape_ratio,
+      s.worst_pair_ratio);
+}
+
+// Every link pair checked (no SRDF needed).
+AllowedCollisionMatrix nothing_allowed(const RobotModel& model) {
+  return AllowedCollisionMatrix(static_cast<int>(model.links().size()));
+}
+
+TEST(MotionLevers, BoundEveryShapeAndPairOnTheRobots) {
+  const int motions = test::sample_count(16);
+  for (const test::RobotFile& robot : test::all_robots()) {
+    SCOPED_TRACE(robot.urdf);
+    const auto model = test::cached_model(robot.urdf);
+    const AllowedCollisionMatrix matrix =
+        robot.srdf.empty() ? nothing_allowed(*model)
+                           : AllowedCollisionMatrix::from_srdf(*model, read_srdf_file(robot.srdf));
+    const CollisionChecker checker(model, matrix, PlanningScene{});
+    std::mt19937_64 rng(41);
+    LeverStats stats;
+    check_levers(
+        checker, motions, 64, [&] { return test::random_configuration(*model, rng); }, &stats);
+    report(robot.id, stats);
+    EXPECT_GT(stats.worst_shape_ratio, 0.2);  // the check sees real motion
+  }
+}
+
+// Chains where the exact parts of the bound matter: offset and tilted axes, a fixed joint
+// between two revolute ones, a prismatic joint in the middle, and boxes, spheres and cylinders
+// off their links' origins.
+TEST(MotionLevers, BoundEveryShapeOnHandMadeChains) {
+  const auto model = std::make_shared<const RobotModel>(RobotModel::from_urdf_string(
+      R"(<robot name="lever_chain">
+  <link name="base"/>
+  <link name="upper"><collision><origin xyz="0.3 0.05 0.1" rpy="0.3 0.2 0.1"/>
+    <geometry><box size="0.4 0.05 0.08"/></geometry></collision></link>
+  <link name="bracket"><collision><origin xyz="0.1 0 -0.05"/>
+    <geometry><sphere radius="0.04"/></geometry></collision></link>
+  <link name="fore"><collision><origin xyz="0 0.2 0" rpy="1.2 0 0"/>
+    <geometry><cylinder radius="0.03" length="0.3"/></geometry></collision></link>
+  <link name="slider"><collision><origin xyz="0.05 0 0.02"/>
+    <geometry><cylinder radius="0.02" length="0.1"/></geometry></collision></link>
+  <link name="tip"><collision><origin xyz="0 0 0.1" rpy="0 0.7 0"/>
+    <geometry><box size="0.05 0.1 0.2"/></geometry></collision></link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/><child link="upper"/><origin xyz="0 0 0.4"/><axis xyz="0 0.6 0.8"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/>
+  </joint>
+  <joint name="mount" type="fixed">
+    <parent link="upper"/><child link="bracket"/><origin xyz="0.5 0.1 0" rpy="0 0.5 0"/>
+  </joint>
+  <joint name="elbow" type="revolute">
+    <parent link="bracket"/><child link="fore"/><origin xyz="0.1 0 0.05" rpy="0.4 0 0"/>
+    <axis xyz="1 0 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/>
+  </joint>
+  <joint name="extend" type="prismatic">
+    <parent link="fore"/><child link="slider"/><origin xyz="0 0.35 0"/><axis xyz="0 1 0"/>
+    <limit lower="0" upper="0.2" effort="1" velocity="1"/>
+  </joint>
+  <joint name="wrist" type="continuous">
+    <parent link="slider"/><child link="tip"/><origin xyz="0.02 0.1 0" rpy="0 0 0.3"/>
+    <axis xyz="0 0 1"/>
+  </joint>
+</robot>)",
+      ".", {}, "lever_chain.urdf"));
+  const CollisionChecker checker(model, nothing_allowed(*model), PlanningScene{});
+  std::mt19937_64 rng(5);
+  LeverStats stats;
+  check_levers(
+      checker, test::sample_count(200), 128,
+      [&] { return test::random_configuration(*model, rng); }, &stats);
+  report("lever_chain", stats);
+  EXPECT_GT(stats.worst_shape_ratio, 0.5);
+  EXPECT_GT(stats.pair_checks, 0);
+}
+
+}  // namespace
+}  // namespace hullcheck
