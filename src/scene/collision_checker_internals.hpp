@@ -79,7 +79,11 @@ struct CollisionChecker::Scratch {
   std::vector<Eigen::Isometry3d> table_poses;
   std::vector<Eigen::Vector3d> table_centers;  // per robot shape: its ball's centre there
   std::vector<MotionInterval> motion_intervals, motion_intervals_next;
-  Eigen::VectorXd motion_q;   // the configuration being evaluated
+  Eigen::VectorXd motion_q;  // the configuration being evaluated
+  // check_motion's probes: a block of configurations along the motion (kPoseBlockLanes
+  // columns) and their verdicts.
+  Eigen::MatrixXd motion_probes;
+  bool probe_valid[kPoseBlockLanes];
   Eigen::VectorXd motion_dq;  // q1 - q0 (abs_dq holds its magnitudes)
   // Per self block: its hull query's last warm start within the motion numbered `motion`
   // (motion_stamp grows with every check_motion, so every motion starts cold, as on any thread).

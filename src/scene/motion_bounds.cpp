@@ -5,6 +5,7 @@
 #include <hullcheck/core/errors.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
 #include <variant>
+#include <vector>
 
 #include "collision_checker_internals.hpp"
 
@@ -44,62 +45,50 @@ double farthest(const CollisionShape& cs, const Bound& bound) {
   return d + cs.shape.margin();
 }
 
-// Where a link below a revolute joint J sits relative to J's axis, in J's child link frame
-// (the axis: the line through its origin along J's unit axis, fixed in that frame). A point p
-// of the link (its own frame) lies at most distance(p) from the axis, for every value of the
-// joints between J and the link:
-//   kRigid: no moving joint in between; the link's frame is `rigid` (exact).
-//   kOneJoint: one moving joint K in between: `rigid` maps K's joint frame into J's child
-//     frame, `after` the link's frame into K's child frame. K turns a point about its axis
-//     (the part along the axis stays, the rest keeps its length) or slides it by at most
-//     `travel`.
-//   kFar: further down: the link's origin lies within `reach` of the axis.
+// Where a link below a revolute joint J sits relative to J's axis (the line through J's child
+// link frame's origin along J's unit axis, fixed in that frame): a point p of the link (its own
+// frame) lies at most distance(p) from the axis, for every value of the joints in between.
+// The moving joints K between J and the link, from J down, each with `pre` (K's joint frame
+// into the frame of the moving joint above, J's child frame for the first; fixed joints folded
+// in) and `tail` (the link's frame into the last K's child frame). Going up through K, a point
+// z of K's child frame is turned about K's axis: its part along the axis stays, the rest keeps
+// its length wherever it turns (or, for a prismatic K, z slides by at most its travel). The
+// distance from J's axis changes by at most the distance a point moves, so it is at most the
+// bound at the part that stays plus the length of the part that turns (or the travel).
 struct AxisBound {
-  enum Kind { kRigid, kOneJoint, kFar } kind = kRigid;
-  Eigen::Isometry3d rigid = Eigen::Isometry3d::Identity();
-  Eigen::Isometry3d after = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d turn_axis = Eigen::Vector3d::Zero();  // K's, in K's joint frame
-  bool turns = true;                                    // K revolute (else prismatic)
-  double travel = 0.0;                                  // K's prismatic travel
-  double reach = 0.0;
+  struct Level {
+    Eigen::Isometry3d pre;
+    Eigen::Vector3d axis;  // K's, in K's joint frame
+    double travel;         // prismatic K: its travel; revolute: < 0
+  };
+  std::vector<Level> levels;
+  Eigen::Isometry3d tail = Eigen::Isometry3d::Identity();
 
   double distance(const Eigen::Vector3d& p, const Eigen::Vector3d& axis) const {
-    const auto from_axis = [&](const Eigen::Vector3d& x) {
-      return (x - x.dot(axis) * axis).norm();
-    };
-    switch (kind) {
-      case kRigid:
-        return from_axis(rigid * p);
-      case kOneJoint: {
-        const Eigen::Vector3d z = after * p;
-        if (!turns) return from_axis(rigid * z) + travel;
-        const Eigen::Vector3d along = z.dot(turn_axis) * turn_axis;
-        return from_axis(rigid * along) + (z - along).norm();
+    Eigen::Vector3d z = tail * p;
+    double moved = 0.0;  // how far the turning parts move the point, at most
+    for (auto level = levels.rbegin(); level != levels.rend(); ++level) {
+      if (level->travel >= 0.0) {
+        moved += level->travel;
+      } else {
+        const Eigen::Vector3d along = z.dot(level->axis) * level->axis;
+        moved += (z - along).norm();
+        z = along;
       }
-      default:
-        return reach + p.norm();
+      z = level->pre * z;
     }
+    return (z - z.dot(axis) * axis).norm() + moved;
   }
-  // The bound of the link below `joint` (origin: this link's frame -> the joint frame).
-  AxisBound below(const Joint& joint, const Eigen::Vector3d& axis) const {
+  // The bound of the link below `joint`, a child joint of this bound's link.
+  AxisBound below(const Joint& joint) const {
     AxisBound out = *this;
-    const bool moves = joint.type != JointType::kFixed;
-    const double slide = joint.type == JointType::kPrismatic ? joint.limit_reach() : 0.0;
-    if (kind == kRigid && moves) {
-      out.kind = kOneJoint;
-      out.rigid = rigid * joint.origin;
-      out.after = Eigen::Isometry3d::Identity();
-      out.turn_axis = joint.axis;
-      out.turns = joint.type != JointType::kPrismatic;
-      out.travel = slide;
-    } else if (kind == kRigid) {
-      out.rigid = rigid * joint.origin;
-    } else if (kind == kOneJoint && !moves) {
-      out.after = after * joint.origin;
-    } else {  // a second moving joint, or further down
-      out.kind = kFar;
-      out.reach = distance(joint.origin.translation(), axis) + slide;
+    if (joint.type == JointType::kFixed) {
+      out.tail = tail * joint.origin;
+      return out;
     }
+    out.levels.push_back({tail * joint.origin, joint.axis,
+                          joint.type == JointType::kPrismatic ? joint.limit_reach() : -1.0});
+    out.tail = Eigen::Isometry3d::Identity();
     return out;
   }
 };
@@ -162,9 +151,8 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
   // travels per unit of the joint's own value. A prismatic joint moves them by one. A revolute
   // joint turns them on circles about its axis, a line fixed in its child link's frame: a
   // point's lever is its distance from that line, bounded over every configuration of the
-  // joints in between (AxisBound: exact on the child link and rigidly attached ones, with one
-  // joint in between nearly so, further down through the link origin's distance); never more
-  // than the bound through the shape's bounding ball.
+  // joints in between (AxisBound: exact on the child link and rigidly attached ones); never
+  // more than the bound through the shape's bounding ball.
   const int variables = model_->variable_count();
   out.lever = Eigen::VectorXd::Zero(variables);
   out.shape_levers = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(shapes_.size()), variables);
@@ -202,7 +190,7 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
         const double travel = child.type == JointType::kPrismatic ? child.limit_reach() : 0.0;
         reach[static_cast<std::size_t>(child.child_link)] =
             reach[static_cast<std::size_t>(l)] + child.origin.translation().norm() + travel;
-        axis_bound[static_cast<std::size_t>(child.child_link)] = here.below(child, joint.axis);
+        axis_bound[static_cast<std::size_t>(child.child_link)] = here.below(child);
         stack.push_back(child.child_link);
       }
     }

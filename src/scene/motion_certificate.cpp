@@ -25,7 +25,8 @@
 //
 // Contents (in order):
 //   check_motion           validates input, runs the search
-//   MotionSearch::run      the interval stack
+//   MotionSearch::run      the interval stack (depth first, or level order)
+//   MotionSearch::probe_levels  level order: collision probes a block of states at a time
 //   MotionSearch::examine  one interval: forward kinematics and every item's test
 //   MotionSearch::test_*   one test per item kind (blocks expand into their pairs)
 #include <algorithm>
@@ -46,6 +47,15 @@ namespace {
 constexpr double kSettledFraction = 0.01;
 // Cells of a self block's distance table that one interval's test walks at most.
 constexpr int kMaxTableCells = 64;
+// Level order: when the first level's examination took at least kProbeAfterQueries exact
+// queries, the midpoints of levels 2 .. kProbeLevels are probed (probe_levels) before the
+// search goes on. A probe costs about one is_valid per state (less in blocks); the search's
+// tests with margins at the following levels cost about as many exact queries per state as the
+// first level's and are wasted when a later level finds a contact. Measured (bench_vamp, MBM,
+// certified RRTConnect: about 70% of the motions collide): UR5 7.7 -> 7.2 ms median, the Panda
+// (fewer queries per state; probing every motion cost it 8%) unchanged.
+constexpr int kProbeLevels = 4;
+constexpr int kProbeAfterQueries = 8;
 
 }  // namespace
 
@@ -77,6 +87,10 @@ struct CollisionChecker::MotionSearch {
   MotionCheckResult run();
   MotionCheckResult run_depth_first();  // locate_contact
   MotionCheckResult run_level_order();  // !locate_contact
+  /// The first of the midpoints of levels [first, last] (level k: 2^(k-1) of them), in level
+  /// order, where the robot collides (is_valid_batch's verdicts, a block at a time); -1 when
+  /// none does.
+  double probe_levels(int first, int last);
   MotionCheckResult stop(MotionVerdict verdict, double last_free, double contact) {
     result.verdict = verdict;
     result.last_free = last_free;
@@ -240,6 +254,7 @@ MotionCheckResult CollisionChecker::MotionSearch::run_level_order() {
   // Level by level, each from left to right (the order of OMPL's discrete validator): a
   // contact anywhere is found at the coarsest level that holds it. The items of the next level
   // go to a second buffer; the two swap after each level.
+  int level = 1;
   s.motion_items_next.clear();
   s.motion_intervals_next.clear();
   out = &s.motion_items_next;
@@ -266,8 +281,46 @@ MotionCheckResult CollisionChecker::MotionSearch::run_level_order() {
     s.motion_intervals.swap(s.motion_intervals_next);
     s.motion_items_next.clear();
     s.motion_intervals_next.clear();
+    if (level++ == 1 && !s.motion_intervals.empty() && result.exact_queries >= kProbeAfterQueries) {
+      if (const double t = probe_levels(2, kProbeLevels); t >= 0.0) {
+        return stop(MotionVerdict::kContact, 0.0, t);
+      }
+    }
   }
   return stop(MotionVerdict::kFree, 1.0, 1.0);
+}
+
+double CollisionChecker::MotionSearch::probe_levels(int first, int last) {
+  // Most motions a planner asks about collide (about 70% of RRTConnect's on the MotionBench-
+  // Maker robots), and the search's tests with margins at coarse levels are then wasted: a
+  // colliding state found by is_valid's cheaper verdicts, a block of states at a time, ends
+  // the check first. A collision there is a contact (signed distance <= 0 <= min_clearance).
+  const int n = c.model_->variable_count();
+  if (s.motion_probes.rows() != n) s.motion_probes.resize(n, kPoseBlockLanes);
+  int filled = 0;
+  double ts[kPoseBlockLanes];
+  const auto run_block = [&]() {
+    c.is_valid_block(s.motion_probes, 0, filled, s.probe_valid, s);
+    result.states += filled;
+    for (int k = 0; k < filled; ++k) {
+      if (!s.probe_valid[k]) return ts[k];
+    }
+    filled = 0;
+    return -1.0;
+  };
+  for (int level = first; level <= last; ++level) {
+    const int count = 1 << (level - 1);
+    for (int i = 0; i < count; ++i) {
+      if (result.states + filled >= options.max_states) return -1.0;
+      const double t = (2 * i + 1) / static_cast<double>(2 * count);
+      ts[filled] = t;
+      s.motion_probes.col(filled) = q0 + t * dq;
+      if (++filled == kPoseBlockLanes) {
+        if (const double hit = run_block(); hit >= 0.0) return hit;
+      }
+    }
+  }
+  return filled > 0 ? run_block() : -1.0;
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::examine(

@@ -97,6 +97,11 @@ class HullcheckValidity : public ob::StateValidityChecker {
   Eigen::VectorXd fixed_;
 };
 
+// What the certified motions cost, over the whole run (one thread).
+struct MotionTally {
+  long motions = 0, free = 0, located = 0, states = 0, exact_queries = 0;
+} tally;
+
 // Certified motions: CollisionChecker::check_motion (as GuaranteedMotionValidator, whose space is
 // a JointStateSpace).
 class HullcheckMotions : public ob::MotionValidator {
@@ -123,6 +128,11 @@ class HullcheckMotions : public ob::MotionValidator {
     hullcheck::MotionCheckOptions options;
     options.locate_contact = last_free != nullptr;
     const hullcheck::MotionCheckResult r = validity_->checker().check_motion(q0, q1, options);
+    ++tally.motions;
+    tally.free += r.free();
+    tally.located += options.locate_contact;
+    tally.states += r.states;
+    tally.exact_queries += r.exact_queries;
     if (last_free != nullptr) *last_free = r.last_free;
     return r.free();
   }
@@ -277,6 +287,14 @@ int main(int argc, char** argv) {
               both_valid);
   for (const auto& [name, t] : times) {
     std::printf("| %s | %d | %.3f ms |\n", name.c_str(), solved[name], 1e3 * median(t));
+  }
+  if (tally.motions > 0) {
+    std::printf(
+        "certified motions: %ld checked (%ld free, %ld locating the contact); per motion %.1f "
+        "states, %.1f exact queries\n",
+        tally.motions, tally.free, tally.located,
+        static_cast<double>(tally.states) / static_cast<double>(tally.motions),
+        static_cast<double>(tally.exact_queries) / static_cast<double>(tally.motions));
   }
   return 0;
 }

@@ -34,7 +34,10 @@ struct MotionCheckOptions {
   /// it within `resolution`. false: stop at the first contact found (a yes/no answer, as OMPL's
   /// checkMotion(s1, s2) needs; cheaper): intervals are then examined level by level, as
   /// OMPL's discrete validator orders its states, so a contact is found at the coarsest level
-  /// holding one; last_free is 0 and `contact` the state found, not necessarily the first.
+  /// holding one (when the first level needed many exact queries, the midpoints of the next
+  /// three levels are first probed for collision a block at a time, is_valid_batch's way, the
+  /// first colliding one in level order being the contact); last_free is 0 and `contact` the
+  /// state found, not necessarily the first.
   bool locate_contact = true;
 };
 
