@@ -144,6 +144,24 @@ struct CollisionChecker::MotionLevers {
   // (their dot product with |dq| bounds every member's).
   Eigen::MatrixXd group_levers;       // groups x values
   Eigen::MatrixXd self_block_levers;  // self blocks x values
+  // check_motion's directional rates: per robot shape, the movable joints above its link from
+  // the root down, and per joint and shape the lever per unit of the joint's own value.
+  std::vector<std::vector<int>> shape_chains;
+  Eigen::MatrixXd joint_arms;  // joints x shapes
 };
+
+// Bounds on the signed distance of A and B from their supporting planes normal to the unit
+// vector n (from A towards B): every point of A is at most n.a_max along n, every point of
+// B at least n.b_min, so distance >= n.(b_min - a_max) (and depth <= -that when overlapping:
+// the difference A - B reaches no further than that along -n). The two support points are
+// points of the shapes, so their distance bounds the signed distance from above.
+inline void slab_bounds(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+                        const Eigen::Isometry3d& pose_b, const Eigen::Vector3d& n, double* lower,
+                        double* upper) {
+  const Eigen::Vector3d a_max = pose_a * a.support(pose_a.linear().transpose() * n);
+  const Eigen::Vector3d b_min = pose_b * b.support(-(pose_b.linear().transpose() * n));
+  *lower = n.dot(b_min - a_max);
+  *upper = (b_min - a_max).norm();
+}
 
 }  // namespace hullcheck

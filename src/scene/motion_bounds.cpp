@@ -214,6 +214,17 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
       out.self_pair_levers(static_cast<Eigen::Index>(p), v) += m * arm(ji, above_a ? a : b);
     }
   }
+  out.joint_arms = arm;
+  out.shape_chains.assign(shapes_.size(), {});
+  for (std::size_t sh = 0; sh < shapes_.size(); ++sh) {
+    std::vector<int>& chain = out.shape_chains[sh];
+    for (int l = shapes_[sh].link; model_->link(l).parent_joint >= 0;) {
+      const int j = model_->link(l).parent_joint;
+      if (model_->joint(j).type != JointType::kFixed) chain.push_back(j);
+      l = model_->joint(j).parent_link;
+    }
+    std::reverse(chain.begin(), chain.end());  // from the root down
+  }
   out.group_levers = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(groups_.size()), variables);
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     for (int sh = groups_[g].begin; sh < groups_[g].end; ++sh) {

@@ -100,6 +100,7 @@ class HullcheckValidity : public ob::StateValidityChecker {
 // What the certified motions cost, over the whole run (one thread).
 struct MotionTally {
   long motions = 0, free = 0, located = 0, states = 0, exact_queries = 0;
+  long free_states = 0, free_queries = 0;  // of the free motions
 } tally;
 
 // Certified motions: CollisionChecker::check_motion (as GuaranteedMotionValidator, whose space is
@@ -133,6 +134,7 @@ class HullcheckMotions : public ob::MotionValidator {
     tally.located += options.locate_contact;
     tally.states += r.states;
     tally.exact_queries += r.exact_queries;
+    if (r.free()) tally.free_states += r.states, tally.free_queries += r.exact_queries;
     if (last_free != nullptr) *last_free = r.last_free;
     return r.free();
   }
@@ -291,10 +293,12 @@ int main(int argc, char** argv) {
   if (tally.motions > 0) {
     std::printf(
         "certified motions: %ld checked (%ld free, %ld locating the contact); per motion %.1f "
-        "states, %.1f exact queries\n",
+        "states, %.1f exact queries (free ones: %.1f, %.1f)\n",
         tally.motions, tally.free, tally.located,
         static_cast<double>(tally.states) / static_cast<double>(tally.motions),
-        static_cast<double>(tally.exact_queries) / static_cast<double>(tally.motions));
+        static_cast<double>(tally.exact_queries) / static_cast<double>(tally.motions),
+        static_cast<double>(tally.free_states) / static_cast<double>(std::max(1L, tally.free)),
+        static_cast<double>(tally.free_queries) / static_cast<double>(std::max(1L, tally.free)));
   }
   return 0;
 }
