@@ -84,7 +84,8 @@ struct CollisionChecker::Scratch {
   // columns) and their verdicts.
   Eigen::MatrixXd motion_probes;
   bool probe_valid[kPoseBlockLanes];
-  Eigen::VectorXd motion_dq;  // q1 - q0 (abs_dq holds its magnitudes)
+  Eigen::VectorXd motion_dq;    // q1 - q0 (abs_dq holds its magnitudes)
+  Eigen::VectorXd motion_back;  // q0 - q1: table walks from an interval's middle backwards
   // Per self block: its hull query's last warm start within the motion numbered `motion`
   // (motion_stamp grows with every check_motion, so every motion starts cold, as on any thread).
   struct MotionWarmStart {

@@ -46,7 +46,7 @@ namespace {
 // See MotionSearch::keep.
 constexpr double kSettledFraction = 0.01;
 // Cells of a self block's distance table that one interval's test walks at most.
-constexpr int kMaxTableCells = 64;
+constexpr int kMaxTableCells = 4096;
 // Level order: when the first level's examination took at least kProbeAfterQueries exact
 // queries, the midpoints of levels 2 .. kProbeLevels are probed (probe_levels) before the
 // search goes on. A probe costs about one is_valid per state (less in blocks); the search's
@@ -139,9 +139,10 @@ struct CollisionChecker::MotionSearch {
   Outcome exact_outcome(const SignedDistanceResult& r, double rate);
   std::vector<Item>* out = nullptr;  // where examine() writes the items left undecided
 
-  // The interval's items left undecided are all proven over [m - window, m + window] (the
-  // smallest of their own windows, from a lower bound on their distance at q(m)).
-  double window = 0.0;
+  // The interval's items left undecided are all proven over [m - window_left, m + window_right]
+  // (the smallest of their own windows, from a lower bound on their distance at q(m), or from
+  // a self block's table cells).
+  double window_left = 0.0, window_right = 0.0;
 
   /// Passes `item` on to the interval's parts; `lower` bounds its signed distance at q(m), and
   /// the item's clearance shrinks at most at `window_rate` (>= its rate by default) within the
@@ -159,7 +160,14 @@ struct CollisionChecker::MotionSearch {
     const double w = !(reach > 0.0)      ? 0.0
                      : window_rate > 0.0 ? reach / window_rate
                                          : std::numeric_limits<double>::infinity();
-    window = std::min(window, w);
+    window_left = std::min(window_left, w);
+    window_right = std::min(window_right, w);
+  }
+  /// Passes `item` on, proven over [m - left, m + right].
+  void keep_window(const Item& item, double left, double right) {
+    out->push_back(item);
+    window_left = std::min(window_left, left);
+    window_right = std::min(window_right, right);
   }
 };
 
@@ -185,7 +193,9 @@ MotionCheckResult CollisionChecker::check_motion(const Eigen::Ref<const Eigen::V
   if (s.abs_dq.size() != q0.size()) s.abs_dq.resize(q0.size());
   ++s.motion_stamp;  // the warm starts of earlier motions are not used
   if (s.motion_warm.size() < self_blocks_.size()) s.motion_warm.resize(self_blocks_.size());
+  if (s.motion_back.size() != q0.size()) s.motion_back.resize(q0.size());
   s.motion_dq = q1 - q0;
+  s.motion_back = -s.motion_dq;
   s.abs_dq = s.motion_dq.cwiseAbs();
   const double extra = prismatic_excess_motion(q0, q1);
   MotionSearch search{*this, s, options, motion_levers(), q0, s.abs_dq, s.motion_dq, extra, {}};
@@ -247,13 +257,15 @@ MotionCheckResult CollisionChecker::MotionSearch::run_depth_first() {
       proven_until = interval.end;
       continue;
     }
-    // The parts outside [m - window, m + window], the right one first on the stack: the left
-    // one is examined first.
-    const double w = std::min(window, half);
-    if (w >= half) proven_until = interval.end;
-    if (m + w < interval.end) s.motion_intervals.push_back({m + w, interval.end, kept, kept_end});
-    if (m - w > interval.begin) {
-      s.motion_intervals.push_back({interval.begin, m - w, kept, kept_end});
+    // The parts outside [m - left, m + right], the right one first on the stack: the left one
+    // is examined first.
+    const double left = std::min(window_left, half), right = std::min(window_right, half);
+    if (left >= half) proven_until = std::min(m + right, interval.end);
+    if (m + right < interval.end) {
+      s.motion_intervals.push_back({m + right, interval.end, kept, kept_end});
+    }
+    if (m - left > interval.begin) {
+      s.motion_intervals.push_back({interval.begin, m - left, kept, kept_end});
     }
   }
   if (contact >= 0.0) {  // the search left of the contact ended proving everything before it
@@ -281,12 +293,13 @@ MotionCheckResult CollisionChecker::MotionSearch::run_level_order() {
       if (outcome == Outcome::kContact) return stop(MotionVerdict::kContact, 0.0, m);
       if (at_floor) return stop(MotionVerdict::kNearContact, 0.0, m);
       if (kept_end == kept) continue;
-      const double w = std::min(window, half);  // [m - w, m + w] is proven
-      if (m - w > interval.begin) {
-        s.motion_intervals_next.push_back({interval.begin, m - w, kept, kept_end});
+      // [m - left, m + right] is proven.
+      const double left = std::min(window_left, half), right = std::min(window_right, half);
+      if (m - left > interval.begin) {
+        s.motion_intervals_next.push_back({interval.begin, m - left, kept, kept_end});
       }
-      if (m + w < interval.end) {
-        s.motion_intervals_next.push_back({m + w, interval.end, kept, kept_end});
+      if (m + right < interval.end) {
+        s.motion_intervals_next.push_back({m + right, interval.end, kept, kept_end});
       }
     }
     s.motion_items.swap(s.motion_items_next);
@@ -338,7 +351,7 @@ double CollisionChecker::MotionSearch::probe_levels(int first, int last) {
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::examine(
     double m, const std::vector<Item>& in, int begin, int end) {
   at_floor = false;
-  window = std::numeric_limits<double>::infinity();
+  window_left = window_right = std::numeric_limits<double>::infinity();
   centre = m;
   ++result.states;
   s.motion_q = q0 + m * dq;
@@ -409,6 +422,19 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
   if (c.self_block_segment_lower(item.index, q0.data(), dq.data(), centre - half, centre + half,
                                  kMaxTableCells, options.min_clearance, &lower)) {
     return Outcome::kCertified;
+  }
+  // Not over the whole interval: from q(m) both ways, as far as the cells prove the block. When
+  // that covers half the interval or more, the block is kept over it with no exact test here.
+  double right = 0.0, left = 0.0, unused = 0.0;
+  c.self_block_segment_lower(item.index, s.motion_q.data(), dq.data(), 0.0, half, kMaxTableCells,
+                             options.min_clearance, &unused, &right);
+  if (right > 0.0) {
+    c.self_block_segment_lower(item.index, s.motion_q.data(), s.motion_back.data(), 0.0, half,
+                               kMaxTableCells, options.min_clearance, &unused, &left);
+  }
+  if (left + right >= half) {
+    keep_window(item, left, right);
+    return Outcome::kPending;
   }
   if (c.self_block_bounds(item.index, s.q, &lower, &upper)) {
     if (lower > inflated) return Outcome::kCertified;

@@ -207,9 +207,10 @@ bool CollisionChecker::self_block_bounds(int block, const double* q, double* low
 
 bool CollisionChecker::self_block_segment_lower(int block, const double* q0, const double* dq,
                                                 double t0, double t1, int max_cells, double needed,
-                                                double* lower) const {
+                                                double* lower, double* reached) const {
   const std::vector<SelfTable*>* tables = self_block_tables();
   const SelfTable* table = tables == nullptr ? nullptr : (*tables)[static_cast<std::size_t>(block)];
+  if (reached != nullptr) *reached = t0;
   if (table == nullptr) return false;
   // Cell coordinates u_d(t) = (x_d(t) - lower_d) * cells_per_unit_d along the motion, walked
   // from t0 to t1 one cell boundary at a time (the dimension whose next boundary comes first).
@@ -230,17 +231,19 @@ bool CollisionChecker::self_block_segment_lower(int block, const double* q0, con
     // The motion's ends in cell units (a continuous value's start taken into the grid's turn);
     // a bounded value's must both lie in the grid.
     const double u = table->coordinate(d, q0[v] + t0 * dq[v]);
+    const double du = dq[v] * table->cells_per_unit[d];  // per unit t
+    if (!table->wraps[d] && !(u >= 0.0 && u <= table->cells[d])) return false;
     const double u1 = table->coordinate(d, q0[v] + t1 * dq[v]);
-    if (!table->wraps[d] &&
-        !(u >= 0.0 && u <= table->cells[d] && u1 >= 0.0 && u1 <= table->cells[d])) {
-      return false;
+    if (!table->wraps[d] && !(u1 >= 0.0 && u1 <= table->cells[d])) {
+      if (reached == nullptr) return false;
+      // A walk as far as it goes: up to where the value leaves the grid.
+      t1 = std::min(t1, t0 + ((du > 0.0 ? table->cells[d] : 0.0) - u) / du);
     }
     index[d] = std::min(static_cast<int>(u), table->cells[d] - 1);
-    const double du = dq[v] * table->cells_per_unit[d];  // per unit t
     // The cells crossed are at most one plus the boundaries crossed in each dimension: too
-    // many, and nothing is measured.
+    // many, and nothing is measured (a walk as far as it goes stops at max_cells).
     crossings += std::abs(du) * (t1 - t0) + 1.0;
-    if (crossings > max_cells) return false;
+    if (crossings > max_cells && reached == nullptr) return false;
     if (du > 0.0) {
       dir[d] = 1;
       step[d] = 1.0 / du;
@@ -252,24 +255,29 @@ bool CollisionChecker::self_block_segment_lower(int block, const double* q0, con
     }
   }
   double best = std::numeric_limits<double>::infinity();
+  double entered = t0;  // where the walk entered the current cell
   for (int visited = 0; visited < max_cells; ++visited) {
     long cell = 0;
     for (int d = 0; d < table->dims; ++d) cell = cell * table->cells[d] + index[d];
     const std::uint64_t word =
         table->bounds[static_cast<std::size_t>(cell)].load(std::memory_order_relaxed);
-    if (word == SelfTable::kUnmeasured) return false;
     double lo = 0.0, up = 0.0;
-    unpack(word, &lo, &up);
+    if (word != SelfTable::kUnmeasured) unpack(word, &lo, &up);
+    if (word == SelfTable::kUnmeasured || !(lo > needed)) {
+      if (reached != nullptr) *reached = entered;
+      return false;
+    }
     best = std::min(best, lo);
-    if (!(best > needed)) return false;
     int d_next = -1;
     for (int d = 0; d < table->dims; ++d) {
       if (dir[d] != 0 && (d_next < 0 || next[d] < next[d_next])) d_next = d;
     }
     if (d_next < 0 || next[d_next] >= t1) {
       *lower = best;
+      if (reached != nullptr) *reached = t1;
       return true;
     }
+    entered = next[d_next];
     int& i = index[d_next];
     i += dir[d_next];
     if (table->wraps[d_next]) {
@@ -279,6 +287,7 @@ bool CollisionChecker::self_block_segment_lower(int block, const double* q0, con
     }
     next[d_next] += step[d_next];
   }
+  if (reached != nullptr) *reached = entered;
   return false;
 }
 

@@ -66,6 +66,14 @@ struct SelfTableTestAccess {
     return c.self_block_segment_lower(block, q0.data(), dq.data(), 0.0, 1.0, 1 << 20,
                                       -std::numeric_limits<double>::infinity(), lower);
   }
+  // The walk as far as it goes with cells above `needed` (after segment() measured them).
+  static double reach(const CollisionChecker& c, int block, const Eigen::VectorXd& q0,
+                      const Eigen::VectorXd& dq, double needed) {
+    double lower = 0.0, reached = -1.0;
+    c.self_block_segment_lower(block, q0.data(), dq.data(), 0.0, 1.0, 1 << 20, needed, &lower,
+                               &reached);
+    return reached;
+  }
 };
 
 namespace {
@@ -89,7 +97,7 @@ double brute_force(const RobotModel& model, int a, int b, const Eigen::VectorXd&
 
 struct Counts {
   int blocks_with_tables = 0;
-  long points = 0, decided_apart = 0, decided_overlap = 0, segments = 0;
+  long points = 0, decided_apart = 0, decided_overlap = 0, segments = 0, partial_walks = 0;
 };
 
 // Random points of random cells of every table, corners included, and random motions.
@@ -136,6 +144,21 @@ void check_bounds(const CollisionChecker& checker, int cells_per_block, Counts* 
         ASSERT_LE(segment_lower, brute_force(model, a, b, qi) + kTol)
             << "q0 = " << q.transpose() << ", dq = " << dq.transpose() << ", t = " << i / 40.0;
       }
+      // The walk as far as the cells stay above a bound between the motion's smallest and its
+      // start cell's: it stops inside the motion, and the distance is above that bound up to
+      // where it stopped.
+      if (!(lower > segment_lower)) continue;
+      const double needed = 0.5 * (lower + segment_lower);
+      const double reached = SelfTableTestAccess::reach(checker, k, q, dq, needed);
+      ASSERT_GT(reached, 0.0);
+      ASSERT_LT(reached, 1.0);
+      ++counts->partial_walks;
+      for (int i = 0; i < 40; ++i) {
+        const double t = reached * i / 40.0;
+        ASSERT_GT(brute_force(model, a, b, q + t * dq), needed - kTol)
+            << "q0 = " << q.transpose() << ", dq = " << dq.transpose() << ", t = " << t
+            << " < reached " << reached;
+      }
     }
   }
 }
@@ -179,8 +202,10 @@ void check_verdicts(const CollisionChecker& checker, int states) {
 void report(const std::string& id, const Counts& c) {
   std::printf(
       "[ %-8s ] %d blocks with tables: %ld points within their cell's bounds (%ld proven apart, "
-      "%ld proven overlapping), %ld motions above their cells' bound\n",
-      id.c_str(), c.blocks_with_tables, c.points, c.decided_apart, c.decided_overlap, c.segments);
+      "%ld proven overlapping), %ld motions above their cells' bound, %ld walks stopped "
+      "inside\n",
+      id.c_str(), c.blocks_with_tables, c.points, c.decided_apart, c.decided_overlap, c.segments,
+      c.partial_walks);
 }
 
 // A tiny ball on a 1 m arm swung about z towards a tiny ball fixed 3.5 mm ahead of it: near

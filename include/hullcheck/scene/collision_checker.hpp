@@ -450,8 +450,12 @@ class CollisionChecker {
   /// q0 + t dq, t in [t0, t1]: the smallest lower bound of the cells it crosses. False (the
   /// bound not written) when the block has no table, the motion leaves the grid, crosses more
   /// than `max_cells` cells or one not measured, or the bound falls to `needed` or below.
+  /// With `reached`: the walk goes as far as it can (up to max_cells cells, or the grid's edge)
+  /// and *reached is where it stopped: every cell of [t0, *reached) is measured with a lower
+  /// bound above `needed` (t1 when it returns true; t0 when the first cell fails).
   bool self_block_segment_lower(int block, const double* q0, const double* dq, double t0, double t1,
-                                int max_cells, double needed, double* lower) const;
+                                int max_cells, double needed, double* lower,
+                                double* reached = nullptr) const;
   /// Measures cell `cell` of self block `block`'s table (exact queries at its centre, with s's
   /// table scratch; the query placed in s is left as it is) unless it is measured; queries of
   /// the model's checkers read the tables from then on.
