@@ -416,21 +416,20 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
                          .norm() -
                      ball_a.radius - ball_b.radius;
   if (gap > inflated) return Outcome::kCertified;
-  // The block's distance table: the cells the interval's motion crosses, all above
-  // min_clearance, prove it over the whole interval; the cell of q(m) bounds it there.
+  // The block's distance table: walked from q(m) both ways as far as its cells' lower bounds
+  // stay above min_clearance. Both ends reached prove the block over the whole interval; half
+  // the interval or more, over that window (kept with no exact test here). The cell of q(m)
+  // bounds it there.
   double lower = -std::numeric_limits<double>::infinity(), upper = 0.0;
-  if (c.self_block_segment_lower(item.index, q0.data(), dq.data(), centre - half, centre + half,
-                                 kMaxTableCells, options.min_clearance, &lower)) {
-    return Outcome::kCertified;
-  }
-  // Not over the whole interval: from q(m) both ways, as far as the cells prove the block. When
-  // that covers half the interval or more, the block is kept over it with no exact test here.
   double right = 0.0, left = 0.0, unused = 0.0;
-  c.self_block_segment_lower(item.index, s.motion_q.data(), dq.data(), 0.0, half, kMaxTableCells,
-                             options.min_clearance, &unused, &right);
-  if (right > 0.0) {
-    c.self_block_segment_lower(item.index, s.motion_q.data(), s.motion_back.data(), 0.0, half,
-                               kMaxTableCells, options.min_clearance, &unused, &left);
+  const bool all_right =
+      c.self_block_segment_lower(item.index, s.motion_q.data(), dq.data(), 0.0, half,
+                                 kMaxTableCells, options.min_clearance, &unused, &right);
+  if (right > 0.0 &&
+      c.self_block_segment_lower(item.index, s.motion_q.data(), s.motion_back.data(), 0.0, half,
+                                 kMaxTableCells, options.min_clearance, &unused, &left) &&
+      all_right) {
+    return Outcome::kCertified;
   }
   if (left + right >= half) {
     keep_window(item, left, right);
