@@ -41,9 +41,9 @@ SignedDistanceResult CollisionChecker::pair_distance_below(std::size_t i, double
   const SelfPair& p = self_pairs_[i - n_env];
   const RobotShape& a = shapes_[static_cast<std::size_t>(p.a)];
   const RobotShape& b = shapes_[static_cast<std::size_t>(p.b)];
-  const WarmStartGrid& grid = warm_grids_[i - n_env];
-  if (grid.dims >= 0 && s.q != nullptr) {
-    WarmStart warm = grid.at(s.q);
+  const WarmStartGrid* grid = warm_grids_[i - n_env];
+  if (grid != nullptr && s.q != nullptr) {
+    WarmStart warm = grid->at(s.q);
     return signed_distance_below(
         model_->link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape, shape_pose(p.a, s),
         model_->link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape, shape_pose(p.b, s),
@@ -261,9 +261,9 @@ double CollisionChecker::NearestSearch::refine(std::size_t i, double ball) {
     const SelfPair& p = c.self_pairs_[i - n_env];
     const Eigen::Isometry3d& pose_a = c.shape_pose(p.a, s);
     Eigen::Vector3d n;
-    const WarmStartGrid& grid = c.warm_grids_[i - n_env];
+    const WarmStartGrid* grid = c.warm_grids_[i - n_env];
     const Eigen::Vector3d* direction =
-        grid.dims >= 0 && s.q != nullptr ? &grid.at(s.q).direction : nullptr;
+        grid != nullptr && s.q != nullptr ? &grid->at(s.q).direction : nullptr;
     if (direction != nullptr && direction->squaredNorm() > 0.0) {
       // The closest pair's direction at the grid cell's centre: a near-optimal slab.
       n = -(pose_a.linear() * *direction).normalized();

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -123,6 +124,10 @@ struct CollisionChecker::ModelSelfTables {
   std::mutex mutex;                       // guards tables and cells
   std::map<std::pair<int, int>, std::unique_ptr<SelfTable>> tables;
   std::size_t cells = 0;
+  // Self pairs' warm-start grids by (link a, shape a, link b, shape b): they depend on the
+  // model's shapes and kinematics only, so the checkers of one model (every scene of a
+  // benchmark) share them. Guarded by `mutex` while built; read-only after.
+  std::map<std::array<int, 4>, std::unique_ptr<WarmStartGrid>> warm_grids;
 };
 
 // The tables of one checker's self blocks, from the model's shared set.

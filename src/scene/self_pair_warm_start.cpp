@@ -1,8 +1,13 @@
-// CollisionChecker's warm-start grids for self pairs moved by at most two configuration values.
+// CollisionChecker's warm-start grids for self pairs moved by at most two configuration values,
+// one set per model (and padding revision) shared by its checkers, like the self tables.
 #include <cmath>
 #include <hullcheck/core/queries.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
 #include <limits>
+#include <memory>
+#include <mutex>
+
+#include "collision_checker_internals.hpp"
 
 namespace hullcheck {
 namespace {
@@ -17,7 +22,9 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 void CollisionChecker::build_warm_start_grids() {
   const RobotModel& model = *model_;
-  warm_grids_.assign(self_pairs_.size(), WarmStartGrid{});
+  warm_grids_.assign(self_pairs_.size(), nullptr);
+  ModelSelfTables& shared = *self_tables_->model;
+  const std::lock_guard<std::mutex> lock(shared.mutex);
   Eigen::VectorXd q = model.default_configuration();
   std::vector<Eigen::Isometry3d> poses(model.links().size());
   for (std::size_t k = 0; k < self_pairs_.size(); ++k) {
@@ -34,10 +41,15 @@ void CollisionChecker::build_warm_start_grids() {
     int keys[2];
     const int key_count = relative_drivers(a.link, b.link, 2, keys);
     if (key_count > 2) continue;
-    WarmStartGrid& grid = warm_grids_[k];
+    std::unique_ptr<WarmStartGrid>& made = shared.warm_grids[{a.link, a.shape, b.link, b.shape}];
+    if (made) {
+      warm_grids_[k] = made.get();
+      continue;
+    }
+    auto grid = std::make_unique<WarmStartGrid>();
     const std::size_t total =
-        grid.setup(model, keys, key_count, key_count == 1 ? kCellsOneValue : kCellsTwoValues);
-    grid.starts.resize(total);
+        grid->setup(model, keys, key_count, key_count == 1 ? kCellsOneValue : kCellsTwoValues);
+    grid->starts.resize(total);
     const Shape& shape_a = model.link(a.link).shapes[static_cast<std::size_t>(a.shape)].shape;
     const Shape& shape_b = model.link(b.link).shapes[static_cast<std::size_t>(b.shape)].shape;
     const Eigen::Isometry3d& origin_a =
@@ -46,9 +58,9 @@ void CollisionChecker::build_warm_start_grids() {
         model.link(b.link).shapes[static_cast<std::size_t>(b.shape)].origin;
     const Eigen::VectorXd q_default = q;
     for (std::size_t cell = 0; cell < total; ++cell) {
-      grid.center(cell, q);
+      grid->center(cell, q);
       model.compute_link_poses(q, poses);
-      WarmStart& start = grid.starts[cell];
+      WarmStart& start = grid->starts[cell];
       const Eigen::Isometry3d pose_a = poses[static_cast<std::size_t>(a.link)] * origin_a;
       const SignedDistanceResult answer = signed_distance_below(
           shape_a, pose_a, shape_b, poses[static_cast<std::size_t>(b.link)] * origin_b, kInfinity,
@@ -60,6 +72,8 @@ void CollisionChecker::build_warm_start_grids() {
       }
     }
     q = q_default;
+    made = std::move(grid);
+    warm_grids_[k] = made.get();
   }
 }
 

@@ -293,7 +293,7 @@ class CollisionChecker {
       return starts[static_cast<std::size_t>(cell(q, true))];
     }
   };
-  /// Fills warm_grids_.
+  /// Fills warm_grids_ from the model's shared set, building the grids it lacks.
   void build_warm_start_grids();
 
   // Robot shapes per group of the obstacle broad phase: a group's bounding ball is tested
@@ -460,7 +460,8 @@ class CollisionChecker {
   /// table scratch; the query placed in s is left as it is) unless it is measured; queries of
   /// the model's checkers read the tables from then on.
   void measure_self_table_cell(int block, long cell, Scratch& s) const;
-  std::vector<WarmStartGrid> warm_grids_;  // per self pair
+  // Per self pair, its warm-start grid (owned by the model's shared set), or nullptr.
+  std::vector<const WarmStartGrid*> warm_grids_;
 };
 
 }  // namespace hullcheck
