@@ -91,13 +91,15 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
                      "' has " + std::to_string(n));
   }
   const std::vector<std::vector<bool>> link_object_allowed = apply_scene_allowed_pairs();
+  padding_revision_ = model_->padding_revision();
+  self_tables_ = std::make_shared<SelfTables>();
+  self_tables_->model = model_self_tables();  // the model's shared tables, grids and spheres
   index_shapes();
   build_covering_spheres();
   build_self_pairs();
   build_groups();
   build_environment_pairs(link_object_allowed);
   // Link depths, from the root down the tree.
-  padding_revision_ = model_->padding_revision();
   link_depth_.assign(model_->links().size(), 0);
   std::vector<int> stack;
   for (int l = 0; l < static_cast<int>(model_->links().size()); ++l) {
@@ -113,8 +115,6 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
     }
   }
   motion_levers_ = std::make_shared<MotionLevers>();
-  self_tables_ = std::make_shared<SelfTables>();
-  self_tables_->model = model_self_tables();
   build_warm_start_grids();
 }
 

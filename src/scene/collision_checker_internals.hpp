@@ -128,6 +128,10 @@ struct CollisionChecker::ModelSelfTables {
   // model's shapes and kinematics only, so the checkers of one model (every scene of a
   // benchmark) share them. Guarded by `mutex` while built; read-only after.
   std::map<std::array<int, 4>, std::unique_ptr<WarmStartGrid>> warm_grids;
+  // The robot shapes' covering and inner spheres (build_covering_spheres), once built.
+  bool spheres_built = false;
+  std::vector<Eigen::Vector4d> cover, inner;
+  std::vector<int> cover_begin;
 };
 
 // The tables of one checker's self blocks, from the model's shared set.

@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <hullcheck/scene/collision_checker.hpp>
+#include <mutex>
 #include <vector>
 
 #include "collision_checker_internals.hpp"
@@ -126,6 +127,15 @@ Eigen::Vector4d inner_ball(const Shape& shape) {
 }  // namespace
 
 void CollisionChecker::build_covering_spheres() {
+  // They depend on the model's shapes only: built once per model (and padding revision).
+  ModelSelfTables& shared = *self_tables_->model;
+  const std::lock_guard<std::mutex> lock(shared.mutex);
+  if (shared.spheres_built) {
+    cover_ = shared.cover;
+    inner_ = shared.inner;
+    cover_begin_ = shared.cover_begin;
+    return;
+  }
   inner_.clear();
   cover_begin_.assign(shapes_.size() + 1, 0);
   std::vector<Eigen::Vector4d> local;
@@ -148,6 +158,10 @@ void CollisionChecker::build_covering_spheres() {
     }
   }
   cover_begin_[shapes_.size()] = static_cast<int>(cover_.size());
+  shared.cover = cover_;
+  shared.inner = inner_;
+  shared.cover_begin = cover_begin_;
+  shared.spheres_built = true;
 }
 
 }  // namespace hullcheck
