@@ -113,6 +113,18 @@ struct CollisionChecker::SelfTable : JointGrid {
   std::vector<double> pair_reach;
   double block_reach = 0.0;
   std::unique_ptr<std::atomic<std::uint64_t>[]> bounds;  // per cell
+  // Once every cell is measured (measure_self_tables): per level k = 1, 2, ... (minima[k - 1]),
+  // the smallest lower bound over each aligned square of 2^k cells per keying value, and the
+  // level's size per value. Read only when `summarized`.
+  std::vector<std::vector<float>> minima;
+  std::vector<std::array<int, kMaxGridValues>> level_size;
+  std::atomic<bool> summarized{false};
+  std::once_flag summary_once;
+  /// Builds minima and sets summarized (every cell measured).
+  void summarize();
+  /// The smallest lower bound over the cells [lo_d, hi_d] (per keying value), at most that of
+  /// every one of them: from the coarsest level holding them in two squares per value.
+  float box_lower(const int* lo, const int* hi) const;
 };
 
 // The tables of one model at one padding revision, keyed by link pair, shared by its

@@ -421,6 +421,11 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
   // the interval or more, over that window (kept with no exact test here). The cell of q(m)
   // bounds it there.
   double lower = -std::numeric_limits<double>::infinity(), upper = 0.0;
+  // First the table's summary: the box of cells the interval spans, all apart.
+  if (c.self_block_box_lower(item.index, q0.data(), dq.data(), centre - half, centre + half,
+                             options.min_clearance)) {
+    return Outcome::kCertified;
+  }
   double right = 0.0, left = 0.0, unused = 0.0;
   const bool all_right =
       c.self_block_segment_lower(item.index, s.motion_q.data(), dq.data(), 0.0, half,

@@ -188,7 +188,99 @@ void CollisionChecker::measure_self_tables() const {
     for (std::size_t cell = 0; cell < tables[k]->cell_count; ++cell) {
       measure_self_table_cell(static_cast<int>(k), static_cast<long>(cell), s);
     }
+    SelfTable& table = *tables[k];
+    std::call_once(table.summary_once, [&table] { table.summarize(); });
   }
+}
+
+void CollisionChecker::SelfTable::summarize() {
+  // Level 0: the cells' lower bounds (as stored, rounded down); level k from level k - 1, each
+  // entry the minimum of the (up to) 2 x 2 entries below it.
+  std::vector<float> below(cell_count);
+  for (std::size_t c = 0; c < cell_count; ++c) {
+    double lo = 0.0, up = 0.0;
+    unpack(bounds[c].load(std::memory_order_relaxed), &lo, &up);
+    // Exact (stored as a float); never unmeasured here, but such a cell would bound nothing.
+    below[c] = std::isnan(lo) ? -std::numeric_limits<float>::infinity() : static_cast<float>(lo);
+  }
+  std::array<int, kMaxGridValues> size{cells[0], dims > 1 ? cells[1] : 1, 1};
+  while (size[0] > 1 || size[1] > 1) {
+    const std::array<int, kMaxGridValues> up{(size[0] + 1) / 2, (size[1] + 1) / 2, 1};
+    std::vector<float> level(static_cast<std::size_t>(up[0]) * static_cast<std::size_t>(up[1]),
+                             std::numeric_limits<float>::infinity());
+    for (int i = 0; i < size[0]; ++i) {
+      for (int j = 0; j < size[1]; ++j) {
+        float& m = level[static_cast<std::size_t>(i / 2) * static_cast<std::size_t>(up[1]) +
+                         static_cast<std::size_t>(j / 2)];
+        m = std::min(m, below[static_cast<std::size_t>(i) * static_cast<std::size_t>(size[1]) +
+                              static_cast<std::size_t>(j)]);
+      }
+    }
+    minima.push_back(level);
+    level_size.push_back(up);
+    below = std::move(level);
+    size = up;
+  }
+  summarized.store(true, std::memory_order_release);
+}
+
+float CollisionChecker::SelfTable::box_lower(const int* lo, const int* hi) const {
+  const int lo1 = dims > 1 ? lo[1] : 0, hi1 = dims > 1 ? hi[1] : 0;
+  // The first level whose squares hold the range in at most two per value (the top level is
+  // one square).
+  std::size_t k = 0;
+  while (k < minima.size() && ((hi[0] >> k) - (lo[0] >> k) > 1 || (hi1 >> k) - (lo1 >> k) > 1)) {
+    ++k;
+  }
+  float m = std::numeric_limits<float>::infinity();
+  if (k == 0) {
+    for (int i = lo[0]; i <= hi[0]; ++i) {
+      for (int j = lo1; j <= hi1; ++j) {
+        double l = 0.0, u = 0.0;
+        unpack(
+            bounds[static_cast<std::size_t>(i) * static_cast<std::size_t>(dims > 1 ? cells[1] : 1) +
+                   static_cast<std::size_t>(j)]
+                .load(std::memory_order_relaxed),
+            &l, &u);
+        m = std::min(
+            m, std::isnan(l) ? -std::numeric_limits<float>::infinity() : static_cast<float>(l));
+      }
+    }
+    return m;
+  }
+  const std::vector<float>& level = minima[k - 1];
+  const int width = level_size[k - 1][1];
+  for (int i = lo[0] >> k; i <= (hi[0] >> k); ++i) {
+    for (int j = lo1 >> k; j <= (hi1 >> k); ++j) {
+      m = std::min(m, level[static_cast<std::size_t>(i) * static_cast<std::size_t>(width) +
+                            static_cast<std::size_t>(j)]);
+    }
+  }
+  return m;
+}
+
+bool CollisionChecker::self_block_box_lower(int block, const double* q0, const double* dq,
+                                            double t0, double t1, double needed) const {
+  const std::vector<SelfTable*>* tables = self_block_tables();
+  const SelfTable* table = tables == nullptr ? nullptr : (*tables)[static_cast<std::size_t>(block)];
+  if (table == nullptr || !table->summarized.load(std::memory_order_acquire)) return false;
+  int lo[kMaxGridValues] = {0, 0, 0}, hi[kMaxGridValues] = {0, 0, 0};
+  for (int d = 0; d < table->dims; ++d) {
+    const int v = table->variables[d];
+    if (table->cells_per_unit[d] == 0.0) {  // a value without range: it must stay at it
+      if (dq[v] != 0.0 || q0[v] != table->lower[d]) return false;
+      continue;
+    }
+    // The motion's range in cell units, without crossing a continuous value's seam or a
+    // bounded value's grid ends (the cell walk handles those).
+    const double u0 = table->coordinate(d, q0[v] + t0 * dq[v]);
+    const double u1 = u0 + dq[v] * table->cells_per_unit[d] * (t1 - t0);
+    const double a = std::min(u0, u1), b = std::max(u0, u1);
+    if (!(a >= 0.0 && b <= table->cells[d])) return false;
+    lo[d] = std::min(static_cast<int>(a), table->cells[d] - 1);
+    hi[d] = std::min(static_cast<int>(b), table->cells[d] - 1);
+  }
+  return table->box_lower(lo, hi) > needed;
 }
 
 bool CollisionChecker::self_block_bounds(int block, const double* q, double* lower,

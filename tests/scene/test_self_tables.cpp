@@ -66,6 +66,15 @@ struct SelfTableTestAccess {
     return c.self_block_segment_lower(block, q0.data(), dq.data(), 0.0, 1.0, 1 << 20,
                                       -std::numeric_limits<double>::infinity(), lower);
   }
+  // The summary levels' verdict on the box of cells the motion spans (after
+  // measure_self_tables), and the cell walk's over the cells it crosses.
+  static bool box(const CollisionChecker& c, int block, const Eigen::VectorXd& q0,
+                  const Eigen::VectorXd& dq, double needed, bool* walk) {
+    double lower = 0.0;
+    *walk =
+        c.self_block_segment_lower(block, q0.data(), dq.data(), 0.0, 1.0, 1 << 20, needed, &lower);
+    return c.self_block_box_lower(block, q0.data(), dq.data(), 0.0, 1.0, needed);
+  }
   // The walk as far as it goes with cells above `needed` (after segment() measured them).
   static double reach(const CollisionChecker& c, int block, const Eigen::VectorXd& q0,
                       const Eigen::VectorXd& dq, double needed) {
@@ -297,6 +306,56 @@ TEST(SelfTables, MbmRobotsBoundsHoldAgainstBruteForce) {
     report(robot.id, counts);
     EXPECT_GT(counts.blocks_with_tables, 0);
     EXPECT_GT(counts.decided_apart, 0);
+  }
+}
+
+// The tables' summary levels (measure_self_tables) against brute force: a motion whose box of
+// cells the summary proves apart is apart at every sample, and the cell walk, over a subset of
+// that box's cells, proves it too. Motions from one cell to a few hundred long.
+TEST(SelfTables, SummaryBoxesHoldAgainstBruteForce) {
+  std::vector<std::pair<std::string, std::string>> robots = {
+      {test::own_arm().urdf, test::own_arm().srdf}};
+  for (const test::MbmRobot& robot : test::mbm_robots())
+    robots.emplace_back(robot.urdf, robot.srdf);
+  for (const auto& [urdf, srdf] : robots) {
+    SCOPED_TRACE(urdf);
+    const auto model = test::cached_model(urdf);
+    const CollisionChecker checker(model,
+                                   AllowedCollisionMatrix::from_srdf(*model, read_srdf_file(srdf)));
+    checker.measure_self_tables();
+    std::mt19937_64 rng(21);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const int motions = test::sample_count(urdf.find("ur5") != std::string::npos ? 20 : 100);
+    long proven = 0, refused = 0;
+    for (int k = 0; k < SelfTableTestAccess::blocks(checker); ++k) {
+      const auto* grid = SelfTableTestAccess::grid(checker, k);
+      if (grid == nullptr) continue;
+      const auto [a, b] = SelfTableTestAccess::links(checker, k);
+      for (int n = 0; n < motions; ++n) {
+        const Eigen::VectorXd q = test::random_configuration(*model, rng);
+        Eigen::VectorXd dq = Eigen::VectorXd::Zero(q.size());
+        const double cells = std::pow(2.0, 8.0 * std::abs(unit(rng)));  // 1 to 256 cells long
+        for (int d = 0; d < grid->dims; ++d) {
+          dq[grid->variables[d]] = 2.0 * cells * grid->half_width(d) * unit(rng);
+        }
+        const double needed = n % 2 == 0 ? 0.0 : 0.0005;
+        bool walk = false;
+        if (!SelfTableTestAccess::box(checker, k, q, dq, needed, &walk)) {
+          ++refused;
+          continue;
+        }
+        ++proven;
+        EXPECT_TRUE(walk) << "the summary proves a box whose crossed cells the walk does not";
+        for (int i = 0; i <= 40; ++i) {
+          const double t = i / 40.0;
+          ASSERT_GT(brute_force(*model, a, b, q + t * dq), needed - kTol)
+              << "q0 = " << q.transpose() << ", dq = " << dq.transpose() << ", t = " << t;
+        }
+      }
+    }
+    std::printf("[ summary  ] %s: %ld motions proven by their box, %ld not\n",
+                model->name().c_str(), proven, refused);
+    EXPECT_GT(proven, 0);
   }
 }
 

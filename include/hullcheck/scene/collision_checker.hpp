@@ -456,6 +456,13 @@ class CollisionChecker {
   bool self_block_segment_lower(int block, const double* q0, const double* dq, double t0, double t1,
                                 int max_cells, double needed, double* lower,
                                 double* reached = nullptr) const;
+  /// True when every cell of the box in self block `block`'s grid spanned by the straight
+  /// motion q0 + t dq, t in [t0, t1], has a lower bound above `needed` (m), from the table's
+  /// summary levels (built by measure_self_tables): the box holds every cell the motion
+  /// crosses. False when the table is not summarized, the motion leaves the grid or crosses a
+  /// continuous value's seam, or some cell of the box is not above `needed`.
+  bool self_block_box_lower(int block, const double* q0, const double* dq, double t0, double t1,
+                            double needed) const;
   /// Measures cell `cell` of self block `block`'s table (exact queries at its centre, with s's
   /// table scratch; the query placed in s is left as it is) unless it is measured; queries of
   /// the model's checkers read the tables from then on.
