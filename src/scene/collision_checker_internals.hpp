@@ -140,6 +140,9 @@ struct CollisionChecker::ModelSelfTables {
   // model's shapes and kinematics only, so the checkers of one model (every scene of a
   // benchmark) share them. Guarded by `mutex` while built; read-only after.
   std::map<std::array<int, 4>, std::unique_ptr<WarmStartGrid>> warm_grids;
+  // Per joint and robot shape, the lever arm (CollisionChecker::joint_arms), once built.
+  bool joint_arms_built = false;
+  Eigen::MatrixXd joint_arms;
   // The robot shapes' covering and inner spheres (build_covering_spheres), once built.
   bool spheres_built = false;
   std::vector<Eigen::Vector4d> cover, inner;

@@ -139,29 +139,16 @@ int CollisionChecker::relative_drivers(int link_a, int link_b, int at_most, int*
   return count;
 }
 
-const CollisionChecker::MotionLevers& CollisionChecker::motion_levers() const {
-  std::call_once(motion_levers_->built, [this] { build_motion_levers(*motion_levers_); });
-  return *motion_levers_;
-}
-
-void CollisionChecker::build_motion_levers(MotionLevers& out) const {
+const Eigen::MatrixXd& CollisionChecker::joint_arms() const {
+  // They depend on the model's shapes and kinematics only: built once per model (and padding
+  // revision), shared by its checkers.
+  ModelSelfTables& shared = *self_tables_->model;
+  const std::lock_guard<std::mutex> lock(shared.mutex);
+  if (shared.joint_arms_built) return shared.joint_arms;
   const int n = static_cast<int>(model_->links().size());
-  const std::vector<std::vector<bool>> above = joints_above_links();
-  // Lever arms: for each movable joint, a bound on how far any point of each shape it moves
-  // travels per unit of the joint's own value. A prismatic joint moves them by one. A revolute
-  // joint turns them on circles about its axis, a line fixed in its child link's frame: a
-  // point's lever is its distance from that line, bounded over every configuration of the
-  // joints in between (AxisBound: exact on the child link and rigidly attached ones); never
-  // more than the bound through the shape's bounding ball.
-  const int variables = model_->variable_count();
-  out.lever = Eigen::VectorXd::Zero(variables);
-  out.shape_levers = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(shapes_.size()), variables);
-  out.self_pair_levers =
-      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(self_pairs_.size()), variables);
   const int joint_count = static_cast<int>(model_->joints().size());
-  // arm(j, s): motion of shape s per unit of joint j's own value (0 when j does not move s).
-  Eigen::MatrixXd arm =
-      Eigen::MatrixXd::Zero(joint_count, static_cast<Eigen::Index>(shapes_.size()));
+  Eigen::MatrixXd& arm = shared.joint_arms;
+  arm = Eigen::MatrixXd::Zero(joint_count, static_cast<Eigen::Index>(shapes_.size()));
   // reach[l]: distance from the joint's origin to link l's frame origin (the ball bound).
   std::vector<double> reach(static_cast<std::size_t>(n));
   std::vector<AxisBound> axis_bound(static_cast<std::size_t>(n));
@@ -195,6 +182,31 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
       }
     }
   }
+  shared.joint_arms_built = true;
+  return arm;
+}
+
+const CollisionChecker::MotionLevers& CollisionChecker::motion_levers() const {
+  std::call_once(motion_levers_->built, [this] { build_motion_levers(*motion_levers_); });
+  return *motion_levers_;
+}
+
+void CollisionChecker::build_motion_levers(MotionLevers& out) const {
+  const std::vector<std::vector<bool>> above = joints_above_links();
+  // Lever arms: for each movable joint, a bound on how far any point of each shape it moves
+  // travels per unit of the joint's own value. A prismatic joint moves them by one. A revolute
+  // joint turns them on circles about its axis, a line fixed in its child link's frame: a
+  // point's lever is its distance from that line, bounded over every configuration of the
+  // joints in between (AxisBound: exact on the child link and rigidly attached ones); never
+  // more than the bound through the shape's bounding ball.
+  const int variables = model_->variable_count();
+  out.lever = Eigen::VectorXd::Zero(variables);
+  out.shape_levers = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(shapes_.size()), variables);
+  out.self_pair_levers =
+      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(self_pairs_.size()), variables);
+  const int joint_count = static_cast<int>(model_->joints().size());
+  // arm(j, s): motion of shape s per unit of joint j's own value (0 when j does not move s).
+  const Eigen::MatrixXd& arm = joint_arms();
   for (int ji = 0; ji < joint_count; ++ji) {
     const Joint& joint = model_->joint(ji);
     if (joint.type == JointType::kFixed) continue;

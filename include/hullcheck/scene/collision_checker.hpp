@@ -314,6 +314,9 @@ class CollisionChecker {
   std::vector<std::vector<bool>> joints_above_links() const;
   const MotionLevers& motion_levers() const;
   void build_motion_levers(MotionLevers& out) const;
+  /// Per joint and robot shape, how far the shape's points move per unit of the joint's own
+  /// value (motion_bounds.cpp); from the model's shared set, built there when absent.
+  const Eigen::MatrixXd& joint_arms() const;
   /// The configuration values driving the movable joints above exactly one of the two links
   /// (those moving one relative to the other), written to keys[0..]; returns their count, or
   /// at_most + 1 as soon as there are more than at_most. *revolute, when given, tells whether
