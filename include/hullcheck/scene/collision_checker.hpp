@@ -167,9 +167,9 @@ class CollisionChecker {
   /// Upper bound, m, on how far any point of any checked robot shape moves relative to any
   /// other checked shape or obstacle along the straight joint-space motion from q0 to q1 (each
   /// value interpolated linearly): a motion whose bound is below the clearance at q0 cannot
-  /// collide. From the kinematic chain: per joint, |dq| times the largest distance from its
-  /// axis origin to any point of the shapes it moves (prismatic: |dq|); doubled when self pairs
-  /// are checked (both links may move).
+  /// collide. From the kinematic chain: per joint, |dq| times a bound, over every configuration,
+  /// on the largest distance from its axis to any point of the shapes it moves (prismatic:
+  /// |dq|); doubled when self pairs are checked (both links may move).
   double motion_bound(const Eigen::Ref<const Eigen::VectorXd>& q0,
                       const Eigen::Ref<const Eigen::VectorXd>& q1) const;
 
