@@ -13,6 +13,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "robot_test_support.hpp"
@@ -196,6 +197,46 @@ inline double brute_force_obstacle_clearance(const RobotModel& model, const Plan
     }
   }
   return best;
+}
+
+/// Points of a shape (its local frame) whose motion bounds its other points': hull vertices,
+/// box corners, cylinder rims (16 points each), sphere poles, capsule cap poles; with padding,
+/// each pushed out by the margin along the axes.
+inline std::vector<Eigen::Vector3d> shape_points(const Shape& shape) {
+  std::vector<Eigen::Vector3d> out;
+  const Shape::Geometry& g = shape.geometry();
+  const Eigen::Vector3d axes[] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                  {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+  if (const auto* box = std::get_if<Box>(&g)) {
+    for (int c = 0; c < 8; ++c) {
+      out.emplace_back((c & 1 ? 1 : -1) * box->half_extents.x(),
+                       (c & 2 ? 1 : -1) * box->half_extents.y(),
+                       (c & 4 ? 1 : -1) * box->half_extents.z());
+    }
+  } else if (const auto* sphere = std::get_if<Sphere>(&g)) {
+    for (const auto& a : axes) out.push_back(sphere->radius * a);
+  } else if (const auto* cyl = std::get_if<Cylinder>(&g)) {
+    for (int i = 0; i < 16; ++i) {
+      const double a = 2 * M_PI * i / 16;
+      for (const double z : {-cyl->half_length, cyl->half_length}) {
+        out.emplace_back(cyl->radius * std::cos(a), cyl->radius * std::sin(a), z);
+      }
+    }
+  } else if (const auto* cap = std::get_if<Capsule>(&g)) {
+    for (const auto& a : axes) {
+      out.push_back(cap->radius * a + Eigen::Vector3d(0, 0, cap->half_length));
+      out.push_back(cap->radius * a - Eigen::Vector3d(0, 0, cap->half_length));
+    }
+  } else {
+    out = std::get<ConvexHull>(g).vertices();
+  }
+  if (shape.margin() > 0) {  // padding: the points pushed out along the axes
+    const std::size_t n = out.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      for (const auto& a : axes) out.push_back(out[i] + shape.margin() * a);
+    }
+  }
+  return out;
 }
 
 }  // namespace hullcheck::test

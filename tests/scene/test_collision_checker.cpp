@@ -429,45 +429,6 @@ TEST(CollisionCheckerContinuity, ClearanceContinuousAcrossContact) {
 // ------------------------------------------------------------------------------------------
 // motion_bound against forward kinematics.
 
-// Points of a shape (local frame) that the bound covers: hull vertices, box corners, cylinder
-// rims, sphere poles, capsule cap poles.
-std::vector<Eigen::Vector3d> shape_points(const Shape& shape) {
-  std::vector<Eigen::Vector3d> out;
-  const Shape::Geometry& g = shape.geometry();
-  const Eigen::Vector3d axes[] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
-                                  {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
-  if (const auto* box = std::get_if<Box>(&g)) {
-    for (int c = 0; c < 8; ++c) {
-      out.emplace_back((c & 1 ? 1 : -1) * box->half_extents.x(),
-                       (c & 2 ? 1 : -1) * box->half_extents.y(),
-                       (c & 4 ? 1 : -1) * box->half_extents.z());
-    }
-  } else if (const auto* sphere = std::get_if<Sphere>(&g)) {
-    for (const auto& a : axes) out.push_back(sphere->radius * a);
-  } else if (const auto* cyl = std::get_if<Cylinder>(&g)) {
-    for (int i = 0; i < 16; ++i) {
-      const double a = 2 * M_PI * i / 16;
-      for (const double z : {-cyl->half_length, cyl->half_length}) {
-        out.emplace_back(cyl->radius * std::cos(a), cyl->radius * std::sin(a), z);
-      }
-    }
-  } else if (const auto* cap = std::get_if<Capsule>(&g)) {
-    for (const auto& a : axes) {
-      out.push_back(cap->radius * a + Eigen::Vector3d(0, 0, cap->half_length));
-      out.push_back(cap->radius * a - Eigen::Vector3d(0, 0, cap->half_length));
-    }
-  } else {
-    out = std::get<ConvexHull>(g).vertices();
-  }
-  if (shape.margin() > 0) {  // padding: the points pushed out along the axes
-    const std::size_t n = out.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      for (const auto& a : axes) out.push_back(out[i] + shape.margin() * a);
-    }
-  }
-  return out;
-}
-
 bool has_self_pairs(const RobotModel& model, const AllowedCollisionMatrix& matrix) {
   const int n = static_cast<int>(model.links().size());
   for (int a = 0; a < n; ++a) {
@@ -498,7 +459,7 @@ void check_motion_bound(const CollisionChecker& checker, int segments, int steps
   for (const Link& link : model.links()) {
     std::vector<Eigen::Vector3d> pts;
     for (const CollisionShape& cs : link.shapes) {
-      for (const Eigen::Vector3d& p : shape_points(cs.shape)) pts.push_back(cs.origin * p);
+      for (const Eigen::Vector3d& p : test::shape_points(cs.shape)) pts.push_back(cs.origin * p);
     }
     points.push_back(std::move(pts));
   }

@@ -57,37 +57,8 @@ namespace {
 // motion's point velocity is affine in the point, so a path length is convex in it and largest
 // at an extreme point (round shapes: points on their rims and poles, a close approximation).
 std::vector<Eigen::Vector3d> extreme_points(const CollisionShape& cs) {
-  std::vector<Eigen::Vector3d> local;
-  const Shape::Geometry& g = cs.shape.geometry();
-  const auto circle = [&](double r, double z) {
-    for (int i = 0; i < 24; ++i) {
-      const double a = 2.0 * M_PI * i / 24.0;
-      local.emplace_back(r * std::cos(a), r * std::sin(a), z);
-    }
-  };
-  if (const auto* box = std::get_if<Box>(&g)) {
-    for (int c = 0; c < 8; ++c) {
-      local.emplace_back((c & 1 ? 1 : -1) * box->half_extents.x(),
-                         (c & 2 ? 1 : -1) * box->half_extents.y(),
-                         (c & 4 ? 1 : -1) * box->half_extents.z());
-    }
-  } else if (const auto* sphere = std::get_if<Sphere>(&g)) {
-    circle(sphere->radius, 0.0);
-    local.emplace_back(0, 0, sphere->radius);
-    local.emplace_back(0, 0, -sphere->radius);
-  } else if (const auto* cap = std::get_if<Capsule>(&g)) {
-    circle(cap->radius, cap->half_length);
-    circle(cap->radius, -cap->half_length);
-    local.emplace_back(0, 0, cap->half_length + cap->radius);
-    local.emplace_back(0, 0, -cap->half_length - cap->radius);
-  } else if (const auto* cyl = std::get_if<Cylinder>(&g)) {
-    circle(cyl->radius, cyl->half_length);
-    circle(cyl->radius, -cyl->half_length);
-  } else {
-    local = std::get<ConvexHull>(g).vertices();
-  }
   std::vector<Eigen::Vector3d> out;
-  for (const Eigen::Vector3d& p : local) out.push_back(cs.origin * p);
+  for (const Eigen::Vector3d& p : test::shape_points(cs.shape)) out.push_back(cs.origin * p);
   return out;
 }
 
