@@ -172,7 +172,7 @@ struct CollisionChecker::MotionLevers {
   // check_motion's directional rates: per robot shape, the movable joints above its link from
   // the root down, and per joint and shape the lever per unit of the joint's own value.
   std::vector<std::vector<int>> shape_chains;
-  Eigen::MatrixXd joint_arms;  // joints x shapes
+  const Eigen::MatrixXd* joint_arms = nullptr;  // joints x shapes: the model's shared ones
 };
 
 // Bounds on the signed distance of A and B from their supporting planes normal to the unit

@@ -226,7 +226,7 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
       out.self_pair_levers(static_cast<Eigen::Index>(p), v) += m * arm(ji, above_a ? a : b);
     }
   }
-  out.joint_arms = arm;
+  out.joint_arms = &arm;
   out.shape_chains.assign(shapes_.size(), {});
   for (std::size_t sh = 0; sh < shapes_.size(); ++sh) {
     std::vector<int>& chain = out.shape_chains[sh];
