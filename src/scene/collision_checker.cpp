@@ -97,6 +97,7 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const RobotModel> model,
   index_shapes();
   build_covering_spheres();
   build_self_pairs();
+  build_self_clusters();
   build_groups();
   build_environment_pairs(link_object_allowed);
   // Link depths, from the root down the tree.

@@ -140,6 +140,8 @@ struct CollisionChecker::ModelSelfTables {
   // model's shapes and kinematics only, so the checkers of one model (every scene of a
   // benchmark) share them. Guarded by `mutex` while built; read-only after.
   std::map<std::array<int, 4>, std::unique_ptr<WarmStartGrid>> warm_grids;
+  // Rigid bodies' hulls by their root link (CollisionChecker::body_hull). Guarded by `mutex`.
+  std::map<int, std::shared_ptr<const Shape>> body_hulls;
   // Per joint and robot shape, the lever arm (CollisionChecker::joint_arms), once built.
   bool joint_arms_built = false;
   Eigen::MatrixXd joint_arms;
@@ -168,6 +170,7 @@ struct CollisionChecker::MotionLevers {
   // check_motion: per shape group / self block, the largest of its members' levers per value
   // (their dot product with |dq| bounds every member's).
   Eigen::MatrixXd group_levers;       // groups x values
+  Eigen::MatrixXd cluster_levers;     // self clusters x values: the largest of their blocks'
   Eigen::MatrixXd self_block_levers;  // self blocks x values
   // check_motion's directional rates: per robot shape, the movable joints above its link from
   // the root down, and per joint and shape the lever per unit of the joint's own value.

@@ -253,6 +253,15 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
               .cwiseMax(out.self_pair_levers.row(p));
     }
   }
+  out.cluster_levers =
+      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(self_clusters_.size()), variables);
+  for (std::size_t k = 0; k < self_clusters_.size(); ++k) {
+    for (int i = self_clusters_[k].begin; i < self_clusters_[k].end; ++i) {
+      out.cluster_levers.row(static_cast<Eigen::Index>(k)) =
+          out.cluster_levers.row(static_cast<Eigen::Index>(k))
+              .cwiseMax(out.self_block_levers.row(cluster_blocks_[static_cast<std::size_t>(i)]));
+    }
+  }
 }
 
 double CollisionChecker::safe_advance(const Eigen::Ref<const Eigen::VectorXd>& q,

@@ -62,7 +62,7 @@ constexpr int kProbeAfterQueries = 8;
 }  // namespace
 
 struct CollisionChecker::MotionSearch {
-  enum Kind { kEnvironmentBlock, kSelfBlock, kEnvironmentPair, kSelfPair };
+  enum Kind { kEnvironmentBlock, kSelfBlock, kEnvironmentPair, kSelfPair, kSelfCluster };
   // kOpen: a bounding hull decided nothing; its block's pieces are tested (hull_outcome).
   enum class Outcome { kCertified, kPending, kContact, kOpen };
   using Item = Scratch::MotionItem;
@@ -105,6 +105,11 @@ struct CollisionChecker::MotionSearch {
   Outcome test(const Item& item);
   Outcome test_environment_block(const Item& item);
   Outcome test_self_block(const Item& item);
+  /// The self blocks of a cluster: its bodies' hulls first, then each block as an item.
+  Outcome test_self_cluster(const Item& item);
+  double self_block_rate(int block) const {
+    return levers.self_block_levers.row(block).dot(abs_dq) + 2.0 * extra;
+  }
   /// A block on an interval too coarse to decide it: kept whole, tested for contact only.
   Outcome probe_block(const Item& item, double gap);
   /// What a block's bounding-hull query `r` (cutoff: the block's margin) decides: kCertified,
@@ -194,7 +199,9 @@ MotionCheckResult CollisionChecker::check_motion(const Eigen::Ref<const Eigen::V
   if (s.motion_dq.size() != q0.size()) s.motion_dq.resize(q0.size());
   if (s.abs_dq.size() != q0.size()) s.abs_dq.resize(q0.size());
   ++s.motion_stamp;  // the warm starts of earlier motions are not used
-  if (s.motion_warm.size() < self_blocks_.size()) s.motion_warm.resize(self_blocks_.size());
+  // Warm starts per self block, then per self cluster.
+  const std::size_t warm_slots = self_blocks_.size() + self_clusters_.size();
+  if (s.motion_warm.size() < warm_slots) s.motion_warm.resize(warm_slots);
   if (s.motion_back.size() != q0.size()) s.motion_back.resize(q0.size());
   s.motion_dq = q1 - q0;
   s.motion_back = -s.motion_dq;
@@ -214,9 +221,31 @@ MotionCheckResult CollisionChecker::MotionSearch::run() {
         {kEnvironmentBlock, static_cast<int>(b), levers.group_levers.row(g).dot(abs_dq) + extra});
   }
   for (std::size_t k = 0; k < c.self_blocks_.size(); ++k) {
+    if (c.cluster_of_block_[k] >= 0) continue;
     s.motion_items.push_back(
-        {kSelfBlock, static_cast<int>(k),
-         levers.self_block_levers.row(static_cast<Eigen::Index>(k)).dot(abs_dq) + 2.0 * extra});
+        {kSelfBlock, static_cast<int>(k), self_block_rate(static_cast<int>(k))});
+  }
+  // A cluster's blocks one by one when any has a table (cheaper than the hulls' query).
+  const std::vector<SelfTable*>* tables = c.self_block_tables();
+  for (std::size_t k = 0; k < c.self_clusters_.size(); ++k) {
+    const SelfCluster& cluster = c.self_clusters_[k];
+    bool tabled = false;
+    for (int i = cluster.begin; i < cluster.end && tables != nullptr; ++i) {
+      tabled =
+          tabled ||
+          (*tables)[static_cast<std::size_t>(c.cluster_blocks_[static_cast<std::size_t>(i)])] !=
+              nullptr;
+    }
+    if (!tabled) {
+      s.motion_items.push_back(
+          {kSelfCluster, static_cast<int>(k),
+           levers.cluster_levers.row(static_cast<Eigen::Index>(k)).dot(abs_dq) + 2.0 * extra});
+      continue;
+    }
+    for (int i = cluster.begin; i < cluster.end; ++i) {
+      const int block = c.cluster_blocks_[static_cast<std::size_t>(i)];
+      s.motion_items.push_back({kSelfBlock, block, self_block_rate(block)});
+    }
   }
   if (!s.motion_items.empty()) {
     s.motion_intervals.push_back({0.0, 1.0, 0, static_cast<int>(s.motion_items.size())});
@@ -378,6 +407,8 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test(con
       return test_self_block(item);
     case kEnvironmentPair:
       return test_pair(static_cast<std::size_t>(item.index), item);
+    case kSelfCluster:
+      return test_self_cluster(item);
     default:
       return test_pair(c.environment_pairs_.size() + static_cast<std::size_t>(item.index), item);
   }
@@ -463,6 +494,54 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
     if (const Outcome h = hull_outcome(item, r, lower); h != Outcome::kOpen) return h;
   }
   return test_block_pairs(kSelfPair, block.begin, block.end);
+}
+
+CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_self_cluster(
+    const Item& item) {
+  const SelfCluster& cluster = c.self_clusters_[static_cast<std::size_t>(item.index)];
+  const RigidBodyHull& a = c.bodies_[static_cast<std::size_t>(cluster.body_a)];
+  const RigidBodyHull& b = c.bodies_[static_cast<std::size_t>(cluster.body_b)];
+  const Eigen::Isometry3d& pose_a = (*s.link_poses_in)[static_cast<std::size_t>(a.root)];
+  const Eigen::Isometry3d& pose_b = (*s.link_poses_in)[static_cast<std::size_t>(b.root)];
+  const double inflated = margin(item.rate);
+  const double gap = (pose_a * a.center - pose_b * b.center).norm() - a.radius - b.radius;
+  if (gap > inflated) return Outcome::kCertified;
+  if (coarse(inflated, std::max(a.radius, b.radius), item.rate)) {
+    // Kept whole, tested for contact only: a contact in any of its blocks drops everything
+    // right of m (and the cluster is searched left of it).
+    for (int i = cluster.begin; i < cluster.end; ++i) {
+      if (c.self_block_collides(c.cluster_blocks_[static_cast<std::size_t>(i)], s)) {
+        out->push_back(item);
+        contact_rate = item.rate;
+        return Outcome::kContact;
+      }
+    }
+    keep(item, gap);
+    return Outcome::kPending;
+  }
+  // The bodies' hulls: apart by the margin (certified), or by less (kept whole, over the
+  // window their distance proves), or closer than min_clearance: then each block is an item
+  // of its own.
+  ++result.exact_queries;
+  const SignedDistanceResult r = signed_distance_below(
+      *a.hull, pose_a, *b.hull, pose_b, inflated,
+      warm_start(c.self_blocks_.size() + static_cast<std::size_t>(item.index)));
+  if (const Outcome h = hull_outcome(item, r, -std::numeric_limits<double>::infinity());
+      h != Outcome::kOpen) {
+    return h;
+  }
+  // Each block an item of its own; after a contact the remaining ones are appended untested.
+  for (int i = cluster.begin; i < cluster.end; ++i) {
+    const int block = c.cluster_blocks_[static_cast<std::size_t>(i)];
+    if (test_self_block({kSelfBlock, block, self_block_rate(block)}) == Outcome::kContact) {
+      for (int k = i + 1; k < cluster.end; ++k) {
+        const int rest = c.cluster_blocks_[static_cast<std::size_t>(k)];
+        out->push_back({kSelfBlock, rest, self_block_rate(rest)});
+      }
+      return Outcome::kContact;
+    }
+  }
+  return Outcome::kCertified;  // the cluster itself: its undecided blocks were kept
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::hull_outcome(

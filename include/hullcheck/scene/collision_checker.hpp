@@ -204,6 +204,7 @@ class CollisionChecker {
  private:
   friend struct SelfTableTestAccess;    // tests/scene/test_self_tables.cpp: the tables' bounds
   friend struct MotionLeverTestAccess;  // tests/scene/test_motion_levers.cpp: the lever arms
+  friend struct RigidBodyTestAccess;    // tests/scene/test_rigid_body_clusters.cpp: body hulls
   struct RobotShape {
     int link;
     int shape;
@@ -242,6 +243,21 @@ class CollisionChecker {
     // A shape containing all of the link's shapes: shapes_[bound]'s element hull when the link
     // is one decomposed mesh, shapes_[bound] itself when it is one shape; -1 otherwise.
     int bound = -1;
+  };
+  // A rigid body (links joined by fixed joints) and a convex hull containing every robot shape
+  // of its links, padding included (rigid_body_clusters.cpp).
+  struct RigidBodyHull {
+    int root = -1;  // the body's topmost link (a model link index): the hull's frame
+    std::shared_ptr<const Shape> hull;
+    Eigen::Vector3d center = Eigen::Vector3d::Zero();  // a ball containing the hull, root frame
+    double radius = 0.0;
+  };
+  // The self blocks joining the same two rigid bodies, when there are two or more: check_motion
+  // tests the bodies' hulls first, one query for all of them (a gripper's links against the
+  // forearm, say).
+  struct SelfCluster {
+    int body_a, body_b;  // indices into bodies_
+    int begin, end;      // cluster_blocks_[begin, end): its self blocks
   };
   /// Robot shape `shape`'s padded shape (the model's).
   const Shape& shape_of(int shape) const;
@@ -307,6 +323,13 @@ class CollisionChecker {
   void build_self_pairs();
   void build_groups();
   void build_environment_pairs(const std::vector<std::vector<bool>>& link_object_allowed);
+  void build_self_clusters();
+  /// The topmost link joined to `link` by fixed joints only (`link` itself when its parent
+  /// joint moves or it is a root).
+  int rigid_root(int link) const;
+  /// The body of links whose rigid root is `root`, with its hull from the model's shared set
+  /// (built there when absent).
+  RigidBodyHull body_hull(int root) const;
   void enclosing_ball(int begin, int end, Eigen::Vector3d* center, double* radius) const;
   struct MotionLevers;
   // Motion bounds' data (motion_bounds.cpp): above[l][j] is true when joint j is on the path
@@ -420,8 +443,12 @@ class CollisionChecker {
   std::vector<ShapeGroup> groups_;
   std::vector<EnvironmentBlock> blocks_;
   bool has_self_pairs_ = false;
-  std::vector<int> link_depth_;  // per link: joints between it and the root
-  int padding_revision_ = 0;     // the model's when the bounding volumes were computed
+  std::vector<RigidBodyHull> bodies_;  // the rigid bodies of self_clusters_
+  std::vector<SelfCluster> self_clusters_;
+  std::vector<int> cluster_blocks_;    // self block indices, by cluster
+  std::vector<int> cluster_of_block_;  // per self block: its cluster, or -1
+  std::vector<int> link_depth_;        // per link: joints between it and the root
+  int padding_revision_ = 0;           // the model's when the bounding volumes were computed
   /// Throws std::logic_error when the model's padding changed since construction.
   void require_current_padding() const;
   // The lever arms of motion_bound and safe_advance, built on first use (their size grows with
