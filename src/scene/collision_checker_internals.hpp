@@ -169,7 +169,10 @@ struct CollisionChecker::MotionLevers {
   Eigen::MatrixXd self_pair_levers;  // self pairs x values
   // check_motion: per shape group / self block, the largest of its members' levers per value
   // (their dot product with |dq| bounds every member's).
-  Eigen::MatrixXd group_levers;       // groups x values
+  Eigen::MatrixXd group_levers;  // groups x values
+  // Per self block: its links are moved relative to each other by more than two values (no
+  // distance table can hold it; check_motion splits it into lines, see test_block_lines).
+  std::vector<char> many_drivers;
   Eigen::MatrixXd cluster_levers;     // self clusters x values: the largest of their blocks'
   Eigen::MatrixXd self_block_levers;  // self blocks x values
   // check_motion's directional rates: per robot shape, the movable joints above its link from

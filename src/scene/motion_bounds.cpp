@@ -253,6 +253,14 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
               .cwiseMax(out.self_pair_levers.row(p));
     }
   }
+  out.many_drivers.assign(self_blocks_.size(), 0);
+  for (std::size_t k = 0; k < self_blocks_.size(); ++k) {
+    int keys[2];
+    out.many_drivers[k] =
+        relative_drivers(link_balls_[static_cast<std::size_t>(self_blocks_[k].link_a)].link,
+                         link_balls_[static_cast<std::size_t>(self_blocks_[k].link_b)].link, 2,
+                         keys) > 2;
+  }
   out.cluster_levers =
       Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(self_clusters_.size()), variables);
   for (std::size_t k = 0; k < self_clusters_.size(); ++k) {

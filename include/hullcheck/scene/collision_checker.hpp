@@ -191,10 +191,10 @@ class CollisionChecker {
   /// the motion with centre m and half-width h, a pair whose shapes move at most `rate` relative
   /// to each other per unit of t (the lever arms of safe_advance) and whose signed distance at
   /// q(m) exceeds h * rate + min_clearance keeps its clearance over the whole interval; pairs
-  /// (and first their groups' balls, links' balls and mesh hulls, with the largest rate of
-  /// their members) that cannot be decided so are passed to the interval's halves, left half
-  /// first, so that the certified part [0, last_free] grows from q0. Tests are ball gaps and
-  /// signed_distance_below with the margin as cutoff (exact distances only where a pair is
+  /// (and first their groups' balls, links' balls and mesh hulls, rigid bodies' hulls, with the
+  /// largest rate of their members) that cannot be decided so are passed to the interval's halves,
+  /// left half first, so that the certified part [0, last_free] grows from q0. Tests are ball gaps
+  /// and signed_distance_below with the margin as cutoff (exact distances only where a pair is
   /// within its margin). Thread-safe; per-thread scratch grows on first use only. Throws
   /// InputError on a bad configuration or options.
   MotionCheckResult check_motion(const Eigen::Ref<const Eigen::VectorXd>& q0,
