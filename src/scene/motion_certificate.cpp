@@ -25,7 +25,7 @@
 //
 // Contents (in order):
 //   check_motion           validates input, runs the search
-//   MotionSearch::run      the interval stack (depth first, or level order)
+//   MotionSearch::run      the interval stack (depth first, or level order after the end state)
 //   MotionSearch::probe_levels  level order: collision probes a block of states at a time
 //   MotionSearch::examine  one interval: forward kinematics and every item's test
 //   MotionSearch::test_*   one test per item kind; an item its test cannot decide expands:
@@ -335,6 +335,19 @@ MotionCheckResult CollisionChecker::MotionSearch::run_level_order() {
   // Level by level, each from left to right (the order of OMPL's discrete validator): a
   // contact anywhere is found at the coarsest level that holds it. The items of the next level
   // go to a second buffer; the two swap after each level.
+  // The motion's end first, as OMPL's discrete validator does: a planner's new state collides
+  // more often than any other of the motion, and is_valid's verdict (a collision there is a
+  // contact: signed distance <= 0 <= min_clearance) is cheaper than the first level's tests
+  // with margins. Measured (bench_vamp, 30 Panda / 10 UR5 problems per family, two paired
+  // runs): Panda 1.109 / 1.117 -> 0.985 / 1.077 ms, UR5 3.76 / 3.73 -> 3.45 / 3.70 ms.
+  {
+    ++result.states;
+    s.motion_q = q0 + dq;
+    c.model_->compute_link_poses_unchecked(s.motion_q.data(), s.link_poses.data());
+    c.place(s.link_poses, s);
+    s.q = s.motion_q.data();
+    if (!c.placed_is_valid(s)) return stop(MotionVerdict::kContact, 0.0, 1.0);
+  }
   int level = 1;
   s.motion_items_next.clear();
   s.motion_intervals_next.clear();

@@ -32,9 +32,10 @@ struct MotionCheckOptions {
   int max_states = 100000;
   /// true: on a contact, search on for the first one, so that `contact` and `last_free` locate
   /// it within `resolution`. false: stop at the first contact found (a yes/no answer, as OMPL's
-  /// checkMotion(s1, s2) needs; cheaper): intervals are then examined level by level, as
-  /// OMPL's discrete validator orders its states, so a contact is found at the coarsest level
-  /// holding one (when the first level needed many exact queries, the midpoints of the next
+  /// checkMotion(s1, s2) needs; cheaper): the end state is checked first (is_valid; a
+  /// collision there is reported as the contact at 1), then intervals are examined level by
+  /// level, as OMPL's discrete validator orders its states, so a contact is found at the coarsest
+  /// level holding one (when the first level needed many exact queries, the midpoints of the next
   /// three levels are first probed for collision a block at a time, is_valid_batch's way, the
   /// first colliding one in level order being the contact); last_free is 0 and `contact` the
   /// state found, not necessarily the first.
