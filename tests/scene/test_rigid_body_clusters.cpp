@@ -9,6 +9,8 @@
 //    to fold onto its base: check_motion's accepted motions are free under FCL at dense
 //    samples, its contacts are contacts. The MotionBenchMaker UR5's gripper (twelve links on
 //    fixed joints) is covered by MotionCheckFcl.Ur5*.
+//  - Lines (a self block moved by three joints, both links decomposed: one piece against the
+//    other link's hull): two U-shaped links, one dipping into the other, against FCL densely.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -28,6 +30,7 @@
 #include "fcl_checker.hpp"
 #include "robot_test_support.hpp"
 #include "scene_test_support.hpp"
+#include "test_support.hpp"
 
 namespace hullcheck {
 
@@ -42,6 +45,23 @@ struct RigidBodyTestAccess {
     std::vector<std::pair<int, const Shape*>> out;
     for (const auto& b : c.bodies_) out.emplace_back(b.root, b.hull.get());
     return out;
+  }
+  // Self blocks check_motion may split into lines: both links decomposed (a hull holding
+  // several pieces), more than two values moving them relative to each other.
+  static int line_blocks(const CollisionChecker& c) {
+    int count = 0;
+    for (const auto& block : c.self_blocks_) {
+      const auto& a = c.link_balls_[static_cast<std::size_t>(block.link_a)];
+      const auto& b = c.link_balls_[static_cast<std::size_t>(block.link_b)];
+      const auto shapes = [&](int link) {
+        return c.shape_begin_[static_cast<std::size_t>(link) + 1] -
+               c.shape_begin_[static_cast<std::size_t>(link)];
+      };
+      int keys[2];
+      count += a.bound >= 0 && b.bound >= 0 && shapes(a.link) > 1 && shapes(b.link) > 1 &&
+               c.relative_drivers(a.link, b.link, 2, keys) > 2;
+    }
+    return count;
   }
   static std::pair<Eigen::Vector3d, double> body_ball(const CollisionChecker& c, int body) {
     const auto& b = c.bodies_[static_cast<std::size_t>(body)];
@@ -210,15 +230,11 @@ TEST(RigidBodyClusters, PaddedToolHullHoldsItsShapes) {
   EXPECT_EQ(stats.bodies, 3);
 }
 
-TEST(RigidBodyClusters, ToolArmMotionsAgreeWithDenseFcl) {
-  const auto model = tool_arm();
-  const AllowedCollisionMatrix matrix = tool_arm_matrix(*model);
-  PlanningScene scene;  // a post beside the arm, to mix obstacle contacts with self ones
-  scene.obstacles.push_back(Obstacle{"post", "post", Shape(Box(0.08, 0.08, 1.0)),
-                                     Eigen::Isometry3d(Eigen::Translation3d(0.45, 0.2, 0.5)),
-                                     "box"});
-  const CollisionChecker checker(model, matrix, scene);
-  ASSERT_EQ(RigidBodyTestAccess::clusters(checker), 2);
+// Random motions from valid states: accepted ones free at dense FCL samples, contacts within
+// min_clearance + resolution of touching; at least a tenth of each.
+void dense_fcl_check(const std::shared_ptr<const RobotModel>& model,
+                     const AllowedCollisionMatrix& matrix, const PlanningScene& scene,
+                     const CollisionChecker& checker, int motions, const char* tag) {
   test::FclChecker fcl(*model, matrix, scene);
   std::vector<Eigen::Isometry3d> poses;
   const auto fcl_free = [&](const Eigen::VectorXd& q) {
@@ -228,7 +244,6 @@ TEST(RigidBodyClusters, ToolArmMotionsAgreeWithDenseFcl) {
   };
   const MotionCheckOptions options;
   std::mt19937_64 rng(17);
-  const int motions = test::sample_count(400);
   int accepted = 0, contacts = 0;
   constexpr int kDense = 400;
   for (int k = 0; k < motions; ++k) {
@@ -256,10 +271,85 @@ TEST(RigidBodyClusters, ToolArmMotionsAgreeWithDenseFcl) {
     EXPECT_LE(d.collision ? 0.0 : d.distance, options.min_clearance + options.resolution + 1e-6)
         << "motion " << k;
   }
-  std::printf("[ tool arm ] %d motions: %d accepted (free at %d FCL samples each), %d contact\n",
+  std::printf("[ %-8s ] %d motions: %d accepted (free at %d FCL samples each), %d contact\n", tag,
               motions, accepted, kDense, contacts);
   EXPECT_GT(accepted, motions / 10);
   EXPECT_GT(contacts, motions / 10);
+}
+
+TEST(RigidBodyClusters, ToolArmMotionsAgreeWithDenseFcl) {
+  const auto model = tool_arm();
+  const AllowedCollisionMatrix matrix = tool_arm_matrix(*model);
+  PlanningScene scene;  // a post beside the arm, to mix obstacle contacts with self ones
+  scene.obstacles.push_back(Obstacle{"post", "post", Shape(Box(0.08, 0.08, 1.0)),
+                                     Eigen::Isometry3d(Eigen::Translation3d(0.45, 0.2, 0.5)),
+                                     "box"});
+  const CollisionChecker checker(model, matrix, scene);
+  ASSERT_EQ(RigidBodyTestAccess::clusters(checker), 2);
+  dense_fcl_check(model, matrix, scene, checker, test::sample_count(400), "tool arm");
+}
+
+// A U-shaped prism (the polygon below extruded along z by `height`), as an OBJ file: concave,
+// so loading decomposes it into pieces.
+void write_u_prism(const std::string& path, double unit, double height) {
+  // Counter-clockwise, with the inner corners' projections on the bar's top edge as vertices
+  // so that the caps' triangles meet edge to edge.
+  const double xy[][2] = {{0, 0}, {3, 0}, {3, 1}, {3, 3}, {2, 3},
+                          {2, 1}, {1, 1}, {1, 3}, {0, 3}, {0, 1}};
+  const int n = 10;
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  ASSERT_NE(f, nullptr) << path;
+  for (double z : {0.0, height}) {
+    for (const auto& p : xy) std::fprintf(f, "v %.6f %.6f %.6f\n", p[0] * unit, p[1] * unit, z);
+  }
+  // Caps: the bar (0 1 2 5 6 9 as a fan from 0, its top edge 9-6-5-2) and the two walls.
+  const int cap[][3] = {{0, 1, 2}, {0, 2, 5}, {0, 5, 6}, {0, 6, 9},
+                        {9, 6, 7}, {9, 7, 8}, {5, 2, 3}, {5, 3, 4}};
+  for (const auto& t : cap) {
+    std::fprintf(f, "f %d %d %d\n", t[0] + 1, t[2] + 1, t[1] + 1);              // bottom, facing -z
+    std::fprintf(f, "f %d %d %d\n", t[0] + n + 1, t[1] + n + 1, t[2] + n + 1);  // top
+  }
+  for (int i = 0; i < n; ++i) {  // sides
+    const int j = (i + 1) % n;
+    std::fprintf(f, "f %d %d %d\nf %d %d %d\n", i + 1, j + 1, j + n + 1, i + 1, j + n + 1,
+                 i + n + 1);
+  }
+  std::fclose(f);
+}
+
+TEST(RigidBodyClusters, ConcaveLinksSplitIntoLinesAgreeWithDenseFcl) {
+  const test::TempDir dir("lines");
+  write_u_prism((dir.path() / "u.obj").string(), 0.04, 0.04);
+  const std::string urdf = R"(<robot name="cups">
+  <link name="base"><collision><origin xyz="-0.06 -0.06 0"/><geometry><mesh filename="u.obj"/>
+    </geometry></collision></link>
+  <link name="post"><collision><origin xyz="0 0 0.06"/><geometry>
+    <cylinder radius="0.012" length="0.12"/></geometry></collision></link>
+  <link name="beam"><collision><origin xyz="0 0 0.06"/><geometry><box size="0.02 0.02 0.12"/>
+    </geometry></collision></link>
+  <link name="cup"><collision><origin xyz="-0.06 -0.06 0.01"/><geometry>
+    <mesh filename="u.obj"/></geometry></collision></link>
+  <joint name="turn" type="revolute"><parent link="base"/><child link="post"/>
+    <origin xyz="0.09 0 0.05"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="lift" type="revolute"><parent link="post"/><child link="beam"/>
+    <origin xyz="0 0 0.12"/><axis xyz="0 1 0"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="twist" type="revolute"><parent link="beam"/><child link="cup"/>
+    <origin xyz="0 0 0.12"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+</robot>)";
+  const auto model = std::make_shared<const RobotModel>(
+      RobotModel::from_urdf_string(urdf, dir.str(), {}, "cups.urdf"));
+  AllowedCollisionMatrix matrix(static_cast<int>(model->links().size()));
+  const auto id = [&](const char* name) { return model->link_index(name); };
+  matrix.allow(id("base"), id("post"), CollisionAllowance::kAdjacent);
+  matrix.allow(id("post"), id("beam"), CollisionAllowance::kAdjacent);
+  matrix.allow(id("beam"), id("cup"), CollisionAllowance::kAdjacent);
+  const CollisionChecker checker(model, matrix);
+  ASSERT_GT(model->link(id("cup")).shapes.size(), 1u) << "the U was not decomposed";
+  ASSERT_EQ(RigidBodyTestAccess::line_blocks(checker), 1);  // base / cup
+  dense_fcl_check(model, matrix, PlanningScene{}, checker, test::sample_count(400), "cups");
 }
 
 }  // namespace
