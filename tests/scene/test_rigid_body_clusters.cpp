@@ -281,8 +281,8 @@ TEST(RigidBodyClusters, ToolArmMotionsAgreeWithDenseFcl) {
   const auto model = tool_arm();
   const AllowedCollisionMatrix matrix = tool_arm_matrix(*model);
   PlanningScene scene;  // a post beside the arm, to mix obstacle contacts with self ones
-  scene.obstacles.push_back(Obstacle{"post", "post", Shape(Box(0.08, 0.08, 1.0)),
-                                     Eigen::Isometry3d(Eigen::Translation3d(0.45, 0.2, 0.5)),
+  scene.obstacles.push_back(Obstacle{"post", "post", Shape(Box(0.12, 0.12, 1.0)),
+                                     Eigen::Isometry3d(Eigen::Translation3d(0.3, 0.15, 0.5)),
                                      "box"});
   const CollisionChecker checker(model, matrix, scene);
   ASSERT_EQ(RigidBodyTestAccess::clusters(checker), 2);
