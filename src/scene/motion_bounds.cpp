@@ -237,20 +237,22 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
     }
     std::reverse(chain.begin(), chain.end());  // from the root down
   }
+  // A bounding volume's levers: per value, the largest of its members'.
+  const auto raise = [](Eigen::MatrixXd& levers, std::size_t row, const auto& member) {
+    levers.row(static_cast<Eigen::Index>(row)) =
+        levers.row(static_cast<Eigen::Index>(row)).cwiseMax(member);
+  };
   out.group_levers = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(groups_.size()), variables);
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     for (int sh = groups_[g].begin; sh < groups_[g].end; ++sh) {
-      out.group_levers.row(static_cast<Eigen::Index>(g)) =
-          out.group_levers.row(static_cast<Eigen::Index>(g)).cwiseMax(out.shape_levers.row(sh));
+      raise(out.group_levers, g, out.shape_levers.row(sh));
     }
   }
   out.self_block_levers =
       Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(self_blocks_.size()), variables);
   for (std::size_t k = 0; k < self_blocks_.size(); ++k) {
     for (int p = self_blocks_[k].begin; p < self_blocks_[k].end; ++p) {
-      out.self_block_levers.row(static_cast<Eigen::Index>(k)) =
-          out.self_block_levers.row(static_cast<Eigen::Index>(k))
-              .cwiseMax(out.self_pair_levers.row(p));
+      raise(out.self_block_levers, k, out.self_pair_levers.row(p));
     }
   }
   out.many_drivers.assign(self_blocks_.size(), 0);
@@ -265,9 +267,8 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
       Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(self_clusters_.size()), variables);
   for (std::size_t k = 0; k < self_clusters_.size(); ++k) {
     for (int i = self_clusters_[k].begin; i < self_clusters_[k].end; ++i) {
-      out.cluster_levers.row(static_cast<Eigen::Index>(k)) =
-          out.cluster_levers.row(static_cast<Eigen::Index>(k))
-              .cwiseMax(out.self_block_levers.row(cluster_blocks_[static_cast<std::size_t>(i)]));
+      raise(out.cluster_levers, k,
+            out.self_block_levers.row(cluster_blocks_[static_cast<std::size_t>(i)]));
     }
   }
 }
