@@ -136,12 +136,42 @@ struct CollisionChecker::MotionSearch {
   double self_block_rate(int block) const {
     return levers.self_block_levers.row(block).dot(abs_dq) + 2.0 * extra;
   }
+  double self_pair_rate(int pair) const {
+    return levers.self_pair_levers.row(pair).dot(abs_dq) + 2.0 * extra;
+  }
+  /// The number of robot shapes of model link `link`.
+  int link_shapes(int link) const {
+    const auto l = static_cast<std::size_t>(link);
+    return c.shape_begin_[l + 1] - c.shape_begin_[l];
+  }
+  /// Tests item_at(0 .. count), each an item of its own; after a contact the remaining ones are
+  /// appended untested. kCertified otherwise: the undecided ones were kept.
+  template <class ItemAt>
+  Outcome test_each(int count, ItemAt item_at) {
+    for (int i = 0; i < count; ++i) {
+      if (test(item_at(i)) == Outcome::kContact) {
+        for (int k = i + 1; k < count; ++k) out->push_back(item_at(k));
+        return Outcome::kContact;
+      }
+    }
+    return Outcome::kCertified;
+  }
+  /// Forward kinematics and the shapes placed at q(t).
+  void place_at(double t) {
+    ++result.states;
+    s.motion_q = q0 + t * dq;
+    c.model_->compute_link_poses_unchecked(s.motion_q.data(), s.link_poses.data());
+    c.place(s.link_poses, s);
+    s.q = s.motion_q.data();  // self pairs' warm-start grids, self blocks' tables
+  }
   /// A block on an interval too coarse to decide it: kept whole, tested for contact only.
   Outcome probe_block(const Item& item, double gap);
   /// What a block's bounding-hull query `r` (cutoff: the block's margin) decides: kCertified,
   /// kPending (kept whole), or kOpen (test the pieces). `lower` is another lower bound on the
-  /// block's signed distance at q(m) (its table's; -inf when none).
-  Outcome hull_outcome(const Item& item, const SignedDistanceResult& r, double lower);
+  /// block's signed distance at q(m) (its table's; -inf when none). With `min_window`, kept
+  /// whole only while the hull's distance proves at least that fraction of the half-width.
+  Outcome hull_outcome(const Item& item, const SignedDistanceResult& r, double lower,
+                       double min_window = 0.0);
   /// True when a bounding volume of size `radius` may move by more than its own size within
   /// the interval (its margin exceeds the radius), above the resolution: its pairs cannot be
   /// told apart yet.
@@ -255,13 +285,11 @@ MotionCheckResult CollisionChecker::MotionSearch::run() {
   const std::vector<SelfTable*>* tables = c.self_block_tables();
   for (std::size_t k = 0; k < c.self_clusters_.size(); ++k) {
     const SelfCluster& cluster = c.self_clusters_[k];
-    bool tabled = false;
-    for (int i = cluster.begin; i < cluster.end && tables != nullptr; ++i) {
-      tabled =
-          tabled ||
-          (*tables)[static_cast<std::size_t>(c.cluster_blocks_[static_cast<std::size_t>(i)])] !=
-              nullptr;
-    }
+    const auto first = c.cluster_blocks_.begin() + cluster.begin;
+    const bool tabled =
+        tables != nullptr && std::any_of(first, first + (cluster.end - cluster.begin), [&](int b) {
+          return (*tables)[static_cast<std::size_t>(b)] != nullptr;
+        });
     if (!tabled) {
       s.motion_items.push_back(
           {kSelfCluster, static_cast<int>(k),
@@ -332,22 +360,16 @@ MotionCheckResult CollisionChecker::MotionSearch::run_depth_first() {
 }
 
 MotionCheckResult CollisionChecker::MotionSearch::run_level_order() {
-  // Level by level, each from left to right (the order of OMPL's discrete validator): a
-  // contact anywhere is found at the coarsest level that holds it. The items of the next level
-  // go to a second buffer; the two swap after each level.
   // The motion's end first, as OMPL's discrete validator does: a planner's new state collides
   // more often than any other of the motion, and is_valid's verdict (a collision there is a
   // contact: signed distance <= 0 <= min_clearance) is cheaper than the first level's tests
   // with margins. Measured (bench_vamp, 30 Panda / 10 UR5 problems per family, two paired
   // runs): Panda 1.109 / 1.117 -> 0.985 / 1.077 ms, UR5 3.76 / 3.73 -> 3.45 / 3.70 ms.
-  {
-    ++result.states;
-    s.motion_q = q0 + dq;
-    c.model_->compute_link_poses_unchecked(s.motion_q.data(), s.link_poses.data());
-    c.place(s.link_poses, s);
-    s.q = s.motion_q.data();
-    if (!c.placed_is_valid(s)) return stop(MotionVerdict::kContact, 0.0, 1.0);
-  }
+  place_at(1.0);
+  if (!c.placed_is_valid(s)) return stop(MotionVerdict::kContact, 0.0, 1.0);
+  // Then level by level, each from left to right (the order of OMPL's discrete validator): a
+  // contact anywhere is found at the coarsest level that holds it. The items of the next level
+  // go to a second buffer; the two swap after each level.
   int level = 1;
   s.motion_items_next.clear();
   s.motion_intervals_next.clear();
@@ -423,11 +445,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::examine(
   at_floor = false;
   window_left = window_right = std::numeric_limits<double>::infinity();
   centre = m;
-  ++result.states;
-  s.motion_q = q0 + m * dq;
-  c.model_->compute_link_poses_unchecked(s.motion_q.data(), s.link_poses.data());
-  c.place(s.link_poses, s);
-  s.q = s.motion_q.data();  // self pairs' warm-start grids, self blocks' tables
+  place_at(m);
   for (int k = begin; k < end; ++k) {
     const Item item = in[static_cast<std::size_t>(k)];  // a copy: `in` may be *out, growing
     if (test(item) == Outcome::kContact) {
@@ -549,11 +567,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_blo
     const SelfBlock& block, double rate) {
   const LinkBall& ball_a = c.link_balls_[static_cast<std::size_t>(block.link_a)];
   const LinkBall& ball_b = c.link_balls_[static_cast<std::size_t>(block.link_b)];
-  const auto count = [&](const LinkBall& ball) {
-    const auto l = static_cast<std::size_t>(ball.link);
-    return c.shape_begin_[l + 1] - c.shape_begin_[l];
-  };
-  const int n_a = count(ball_a), n_b = count(ball_b);
+  const int n_a = link_shapes(ball_a.link), n_b = link_shapes(ball_b.link);
   // One shape against a hull that is only that shape's is the pair itself.
   if (n_a < 2 || n_b < 2 || ball_a.bound < 0 || ball_b.bound < 0) {
     return test_block_pairs(kSelfPair, block.begin, block.end);
@@ -561,18 +575,9 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_blo
   // Lines over the link with fewer shapes: rows (a fixed) are consecutive pairs, columns (b
   // fixed) every n_b-th.
   const bool rows = n_a <= n_b;
-  const int lines = rows ? n_a : n_b;
-  for (int i = 0; i < lines; ++i) {
-    const Item line{rows ? kSelfPieceRow : kSelfPieceColumn, block.begin + (rows ? i * n_b : i),
-                    rate};
-    if (test_piece_line(line) == Outcome::kContact) {
-      for (int k = i + 1; k < lines; ++k) {
-        out->push_back({line.kind, block.begin + (rows ? k * n_b : k), rate});
-      }
-      return Outcome::kContact;
-    }
-  }
-  return Outcome::kCertified;  // the block itself: its undecided lines were kept
+  return test_each(rows ? n_a : n_b, [&](int i) {
+    return Item{rows ? kSelfPieceRow : kSelfPieceColumn, block.begin + (rows ? i * n_b : i), rate};
+  });
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_piece_line(
@@ -584,17 +589,13 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pie
   const int other_link = c.shapes_[static_cast<std::size_t>(row ? first.b : first.a)].link;
   const LinkBall& other = c.link_balls_[static_cast<std::size_t>(
       c.link_ball_of_link_[static_cast<std::size_t>(other_link)])];
-  const auto o = static_cast<std::size_t>(other_link);
-  const int n_other = c.shape_begin_[o + 1] - c.shape_begin_[o];
-  int stride = 1;
-  if (!row) {
-    const auto b_link = static_cast<std::size_t>(c.shapes_[static_cast<std::size_t>(first.b)].link);
-    stride = c.shape_begin_[b_link + 1] - c.shape_begin_[b_link];  // n_b
-  }
+  // A row's pairs are consecutive, a column's n_b apart.
+  const int stride = row ? 1 : link_shapes(c.shapes_[static_cast<std::size_t>(first.b)].link);
   const double inflated = margin(item.rate);
   const RobotShape& rs = c.shapes_[static_cast<std::size_t>(shape)];
   const double gap =
-      (c.center(shape, s) - s.link_centers[static_cast<std::size_t>(c.link_ball_of_link_[o])])
+      (c.center(shape, s) - s.link_centers[static_cast<std::size_t>(
+                                c.link_ball_of_link_[static_cast<std::size_t>(other_link)])])
           .norm() -
       rs.radius - other.radius;
   if (gap > inflated) return Outcome::kCertified;
@@ -605,30 +606,15 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pie
   // Kept whole only while the hull's distance proves a window of at least kLineWindow of the
   // interval: a hull closer than the line's pairs (a concave link) would split the motion
   // where its pairs, on their own, would not.
-  if (r.status == Status::kAboveCutoff && r.signed_distance >= inflated) return Outcome::kCertified;
-  if (r.status == Status::kConverged &&
-      r.signed_distance - options.min_clearance >= kLineWindow * half * item.rate &&
-      half * item.rate > options.resolution) {
-    keep(item, r.signed_distance);
-    return Outcome::kPending;
+  if (const Outcome h =
+          hull_outcome(item, r, -std::numeric_limits<double>::infinity(), kLineWindow);
+      h != Outcome::kOpen) {
+    return h;
   }
-  // Its pairs, each an item of its own.
-  const auto pair_rate = [&](int p) {
-    return levers.self_pair_levers.row(p).dot(abs_dq) + 2.0 * extra;
-  };
-  for (int k = 0; k < n_other; ++k) {
+  return test_each(link_shapes(other_link), [&](int k) {
     const int p = item.index + k * stride;
-    const Item pair{kSelfPair, p, pair_rate(p)};
-    if (test_pair(c.environment_pairs_.size() + static_cast<std::size_t>(p), pair) ==
-        Outcome::kContact) {
-      for (int later = k + 1; later < n_other; ++later) {
-        const int rest = item.index + later * stride;
-        out->push_back({kSelfPair, rest, pair_rate(rest)});
-      }
-      return Outcome::kContact;
-    }
-  }
-  return Outcome::kCertified;
+    return Item{kSelfPair, p, self_pair_rate(p)};
+  });
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_self_cluster(
@@ -665,22 +651,14 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
       h != Outcome::kOpen) {
     return h;
   }
-  // Each block an item of its own; after a contact the remaining ones are appended untested.
-  for (int i = cluster.begin; i < cluster.end; ++i) {
-    const int block = c.cluster_blocks_[static_cast<std::size_t>(i)];
-    if (test_self_block({kSelfBlock, block, self_block_rate(block)}) == Outcome::kContact) {
-      for (int k = i + 1; k < cluster.end; ++k) {
-        const int rest = c.cluster_blocks_[static_cast<std::size_t>(k)];
-        out->push_back({kSelfBlock, rest, self_block_rate(rest)});
-      }
-      return Outcome::kContact;
-    }
-  }
-  return Outcome::kCertified;  // the cluster itself: its undecided blocks were kept
+  return test_each(cluster.end - cluster.begin, [&](int i) {
+    const int block = c.cluster_blocks_[static_cast<std::size_t>(cluster.begin + i)];
+    return Item{kSelfBlock, block, self_block_rate(block)};
+  });
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::hull_outcome(
-    const Item& item, const SignedDistanceResult& r, double lower) {
+    const Item& item, const SignedDistanceResult& r, double lower, double min_window) {
   const double inflated = margin(item.rate);
   if (r.status == Status::kAboveCutoff && r.signed_distance >= inflated) {
     return Outcome::kCertified;
@@ -690,6 +668,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::hull_out
   // per interval instead of one per piece pair). Above the resolution only: there the pieces,
   // possibly further apart than their hulls, decide.
   if (r.status == Status::kConverged && r.signed_distance > options.min_clearance &&
+      r.signed_distance - options.min_clearance >= min_window * half * item.rate &&
       half * item.rate > options.resolution) {
     keep(item, std::max(r.signed_distance, lower));
     return Outcome::kPending;
@@ -715,24 +694,16 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::probe_bl
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_block_pairs(int kind,
                                                                                          int begin,
                                                                                          int end) {
-  const auto rate_of = [&](int i) {
+  // The block itself is decided once its pairs are tested: its undecided pairs were kept as
+  // items of their own.
+  return test_each(end - begin, [&](int k) {
+    const int i = begin + k;
     if (kind == kEnvironmentPair) {
       const int shape = c.environment_pairs_[static_cast<std::size_t>(i)].shape;
-      return levers.shape_levers.row(shape).dot(abs_dq) + extra;
+      return Item{kind, i, levers.shape_levers.row(shape).dot(abs_dq) + extra};
     }
-    return levers.self_pair_levers.row(i).dot(abs_dq) + 2.0 * extra;
-  };
-  const std::size_t offset = kind == kEnvironmentPair ? 0 : c.environment_pairs_.size();
-  for (int i = begin; i < end; ++i) {
-    const Item item{kind, i, rate_of(i)};
-    const Outcome outcome = test_pair(offset + static_cast<std::size_t>(i), item);
-    if (outcome == Outcome::kContact) {
-      for (int r = i + 1; r < end; ++r) out->push_back({kind, r, rate_of(r)});
-      return outcome;
-    }
-  }
-  // The block itself is decided: its undecided pairs were kept as items of their own.
-  return Outcome::kCertified;
+    return Item{kind, i, self_pair_rate(i)};
+  });
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pair(
