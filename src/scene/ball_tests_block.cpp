@@ -136,6 +136,14 @@ std::uint8_t SpheresApart(const double* a, std::size_t na, const double* b, std:
   return static_cast<std::uint8_t>(all);
 }
 
+void SpherePairsApart(const double* spheres, const int* pairs, std::size_t count, double slack,
+                      std::uint8_t* out) {
+  for (std::size_t k = 0; k < count; ++k) {
+    out[k] = SpheresApart(spheres + static_cast<std::size_t>(pairs[2 * k]) * 4 * kL, 1,
+                          spheres + static_cast<std::size_t>(pairs[2 * k + 1]) * 4 * kL, 1, slack);
+  }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace hullcheck
 HWY_AFTER_NAMESPACE();
@@ -146,6 +154,7 @@ namespace hullcheck::detail {
 HWY_EXPORT(PlaceSpheres);
 HWY_EXPORT(SpheresClearOfBoxes);
 HWY_EXPORT(SpheresApart);
+HWY_EXPORT(SpherePairsApart);
 HWY_EXPORT(SpheresInBox);
 
 void place_spheres(const double* pose, const double* spheres, std::size_t n, double* out) {
@@ -159,6 +168,11 @@ std::uint8_t spheres_in_box(const double* spheres, std::size_t n, const double* 
 void spheres_clear_of_boxes(const double* spheres, std::size_t n, const double* boxes,
                             std::size_t m, double slack, std::uint8_t* out) {
   HWY_DYNAMIC_DISPATCH(SpheresClearOfBoxes)(spheres, n, boxes, m, slack, out);
+}
+
+void sphere_pairs_apart(const double* spheres, const int* pairs, std::size_t count, double slack,
+                        std::uint8_t* out) {
+  HWY_DYNAMIC_DISPATCH(SpherePairsApart)(spheres, pairs, count, slack, out);
 }
 
 std::uint8_t spheres_apart(const double* a, std::size_t na, const double* b, std::size_t nb,

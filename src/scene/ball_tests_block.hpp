@@ -25,6 +25,10 @@ void spheres_clear_of_boxes(const double* spheres, std::size_t n, const double* 
                             std::size_t m, double slack, std::uint8_t* out);
 /// The lanes where some sphere reaches into `box` by more than `slack`.
 std::uint8_t spheres_in_box(const double* spheres, std::size_t n, const double* box, double slack);
+/// out[k]: the lanes where spheres pairs[2k] and pairs[2k + 1] of `spheres` are apart, for the
+/// `count` pairs.
+void sphere_pairs_apart(const double* spheres, const int* pairs, std::size_t count, double slack,
+                        std::uint8_t* out);
 /// The lanes where every sphere of `a` is clear of every sphere of `b`.
 std::uint8_t spheres_apart(const double* a, std::size_t na, const double* b, std::size_t nb,
                            double slack);

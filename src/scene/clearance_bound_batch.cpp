@@ -63,16 +63,13 @@ void CollisionChecker::clearance_lower_bound_batch(
       std::fill(gap, gap + kLanes, kInf);
       if (b < n_env) {
         const EnvironmentBlock& block = blocks_[b];
-        const ShapeGroup& group = groups_[static_cast<std::size_t>(block.group)];
-        for (int sh = group.begin; sh < group.end;) {
-          const int link = shapes_[static_cast<std::size_t>(sh)].link;
-          const auto i =
-              static_cast<std::size_t>(link_ball_of_link_[static_cast<std::size_t>(link)]);
+        const auto g = static_cast<std::size_t>(block.group);
+        for (int k = group_ball_begin_[g]; k < group_ball_begin_[g + 1]; ++k) {
+          const auto i = static_cast<std::size_t>(group_balls_[static_cast<std::size_t>(k)]);
           detail::lower_sphere_box_gap(
               s.ball_centers.data() + i * 4 * kLanes, 1,
               box_values_.data() + static_cast<std::size_t>(block.obstacle) * detail::kBoxValues,
               gap);
-          while (sh < group.end && shapes_[static_cast<std::size_t>(sh)].link == link) ++sh;
         }
       } else {
         const SelfBlock& block = self_blocks_[b - n_env];

@@ -216,6 +216,8 @@ void CollisionChecker::build_self_pairs() {
       }
       self_blocks_.push_back(
           {static_cast<int>(i), static_cast<int>(k), begin, static_cast<int>(self_pairs_.size())});
+      self_block_balls_.push_back(static_cast<int>(i));
+      self_block_balls_.push_back(static_cast<int>(k));
     }
   }
   has_self_pairs_ = !self_pairs_.empty();
@@ -260,6 +262,18 @@ void CollisionChecker::build_groups() {
     if (shapes_[static_cast<std::size_t>(group.end - 1)].link != link) continue;
     group.link = link;
     enclosing_ball(group.begin, group.end, &group.local_center, &group.radius);
+  }
+  group_ball_begin_.assign(1, 0);
+  for (const ShapeGroup& group : groups_) {  // shapes are ordered by link
+    for (int sh = group.begin; sh < group.end; ++sh) {
+      const int ball =
+          link_ball_of_link_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(sh)].link)];
+      if (static_cast<int>(group_balls_.size()) == group_ball_begin_.back() ||
+          group_balls_.back() != ball) {
+        group_balls_.push_back(ball);
+      }
+    }
+    group_ball_begin_.push_back(static_cast<int>(group_balls_.size()));
   }
   for (LinkBall& ball : link_balls_) {
     const int begin = shape_begin_[static_cast<std::size_t>(ball.link)];

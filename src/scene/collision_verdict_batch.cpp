@@ -134,13 +134,11 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     const EnvironmentBlock& block = blocks_[b];
     const auto o = static_cast<std::size_t>(block.obstacle);
-    const ShapeGroup& group = groups_[static_cast<std::size_t>(block.group)];
+    const auto g = static_cast<std::size_t>(block.group);
     std::uint8_t clear = 0xff;
-    for (int sh = group.begin; sh < group.end;) {
-      const int link = shapes_[static_cast<std::size_t>(sh)].link;
-      const auto i = static_cast<std::size_t>(link_ball_of_link_[static_cast<std::size_t>(link)]);
-      clear &= s.ball_box_clear[i * obstacles + o];
-      while (sh < group.end && shapes_[static_cast<std::size_t>(sh)].link == link) ++sh;
+    for (int i = group_ball_begin_[g]; i < group_ball_begin_[g + 1]; ++i) {
+      const auto ball = static_cast<std::size_t>(group_balls_[static_cast<std::size_t>(i)]);
+      clear &= s.ball_box_clear[ball * obstacles + o];
     }
     if ((clear & lanes_in_use) == lanes_in_use) continue;
     std::uint8_t spheres_clear = 0xff;
@@ -172,14 +170,14 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
   }
   // Self blocks: the two link balls apart, their covering spheres apart, or the block's table
   // proving the links apart (or overlapping) at the column's values (self_block_tables.cpp).
+  s.self_balls_apart.resize(self_blocks_.size());
+  detail::sphere_pairs_apart(s.ball_centers.data(), self_block_balls_.data(), self_blocks_.size(),
+                             kSlack, s.self_balls_apart.data());
   for (std::size_t b = 0; b < self_blocks_.size(); ++b) {
     const SelfBlock& block = self_blocks_[b];
     const auto ia = static_cast<std::size_t>(block.link_a);
     const auto ib = static_cast<std::size_t>(block.link_b);
-    const std::uint8_t near = static_cast<std::uint8_t>(
-        ~detail::spheres_apart(s.ball_centers.data() + ia * 4 * kLanes, 1,
-                               s.ball_centers.data() + ib * 4 * kLanes, 1, kSlack) &
-        lanes_in_use);
+    const std::uint8_t near = static_cast<std::uint8_t>(~s.self_balls_apart[b] & lanes_in_use);
     if (near == 0) continue;
     // The two links' covering spheres, pair by pair, when they are few.
     const LinkCover cover_a = link_cover(static_cast<int>(ia));

@@ -441,6 +441,10 @@ class CollisionChecker {
   std::vector<int> shape_begin_;  // per link (and one past): its first index in shapes_
   std::vector<EnvironmentPair> environment_pairs_;  // grouped by block
   std::vector<ShapeGroup> groups_;
+  // Per shape group g: the link balls of its links, group_balls_[group_ball_begin_[g] ..
+  // group_ball_begin_[g + 1]) (is_valid_batch's environment blocks).
+  std::vector<int> group_ball_begin_, group_balls_;
+  std::vector<int> self_block_balls_;  // per self block: link_a, link_b (the SIMD ball tests)
   std::vector<EnvironmentBlock> blocks_;
   bool has_self_pairs_ = false;
   std::vector<RigidBodyHull> bodies_;  // the rigid bodies of self_clusters_
