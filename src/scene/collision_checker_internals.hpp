@@ -42,6 +42,10 @@ struct CollisionChecker::Scratch {
   // is_valid: per shape, the stamp of the query and self block for which it was found to meet
   // the other link's hull (pieces that do not cannot meet any of that link's pieces).
   std::vector<std::uint64_t> meets_other;
+  // is_valid: per self cluster, the placement (stamp) bodies_apart last answered for, and its
+  // answer.
+  std::vector<std::uint64_t> bodies_tested;
+  std::vector<char> bodies_were_apart;
   std::vector<std::pair<double, int>> candidates;  // clearance: queue of (lower bound, code)
   std::vector<std::pair<double, int>> nearest;     // clearance: (ball bound, code)
   std::vector<std::pair<double, int>> expanded;    // clearance: a block's pairs

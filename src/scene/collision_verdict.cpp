@@ -84,6 +84,10 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, const Shape& other,
       if (upper < -kTableSlack) return true;
     }
   }
+  // A block joining two rigid bodies with many blocks between them: their hulls, once for all
+  // of them (the UR5's forearm against the gripper's twelve links: one query, not twelve).
+  const int cluster = cluster_of_block_[static_cast<std::size_t>(&block - self_blocks_.data())];
+  if (cluster >= 0 && many_blocks(cluster) && bodies_apart(cluster, s)) return false;
   // Non-zero when the pieces meeting the other link's hull are marked with it (below).
   std::uint64_t mark = 0;
   if (!single) {
@@ -121,6 +125,28 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, const Shape& other,
     }
   }
   return false;
+}
+
+bool CollisionChecker::bodies_apart(int cluster, Scratch& s) const {
+  const auto k = static_cast<std::size_t>(cluster);
+  // Per-thread scratch: allocates on first use only.
+  if (s.bodies_tested.size() < self_clusters_.size()) {
+    s.bodies_tested.resize(self_clusters_.size(), 0);
+    s.bodies_were_apart.resize(self_clusters_.size(), 0);
+  }
+  if (s.bodies_tested[k] != s.stamp) {
+    s.bodies_tested[k] = s.stamp;
+    const SelfCluster& c = self_clusters_[k];
+    const RigidBodyHull& a = bodies_[static_cast<std::size_t>(c.body_a)];
+    const RigidBodyHull& b = bodies_[static_cast<std::size_t>(c.body_b)];
+    const Eigen::Isometry3d& pose_a = (*s.link_poses_in)[static_cast<std::size_t>(a.root)];
+    const Eigen::Isometry3d& pose_b = (*s.link_poses_in)[static_cast<std::size_t>(b.root)];
+    const double reach = a.radius + b.radius;
+    s.bodies_were_apart[k] =
+        (pose_a * a.center - pose_b * b.center).squaredNorm() > reach * reach ||
+        !intersect(*a.hull, pose_a, *b.hull, pose_b);
+  }
+  return s.bodies_were_apart[k] != 0;
 }
 
 bool CollisionChecker::environment_block_collides(int block, Scratch& s) const {

@@ -390,6 +390,17 @@ class CollisionChecker {
   bool self_block_collides(int block, Scratch& s) const;
   // Marks (s.meets_other = mark) the shapes of link ball `link_ball` meeting `other` at its
   // pose; true when any does.
+  /// True when self cluster `cluster`'s two rigid bodies' hulls are apart at the placed poses
+  /// (then none of its blocks' pairs meets); computed once per placement.
+  bool bodies_apart(int cluster, Scratch& s) const;
+  /// Whether is_valid tests self cluster `cluster`'s body hulls before its blocks: when they
+  /// replace more than kGroupSize block queries. Measured (bench_python_reference, MBM
+  /// bookshelf_small scene 1): the UR5's gripper (12 blocks) 6-12% faster per state, the
+  /// Panda's hand and fingers (4) 4-8% slower.
+  bool many_blocks(int cluster) const {
+    const SelfCluster& c = self_clusters_[static_cast<std::size_t>(cluster)];
+    return c.end - c.begin > kGroupSize;
+  }
   bool mark_pieces_meeting(int link_ball, const Shape& other, const Eigen::Isometry3d& other_pose,
                            std::uint64_t mark, Scratch& s) const;
   void place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const;
