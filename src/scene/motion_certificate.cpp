@@ -32,7 +32,9 @@
 //                          a self cluster (two rigid bodies' hulls) into its self blocks, a
 //                          self block (its links' hulls) into its pairs or, when more than two
 //                          values move its links, into lines (one shape against the other
-//                          link's hull) and those into pairs; an environment block into pairs
+//                          link's hull) and those into pairs; a shape group (against every
+//                          obstacle, kept whole while the interval is coarse) into its
+//                          environment blocks, and those into pairs
 #include <algorithm>
 #include <cmath>
 #include <hullcheck/core/errors.hpp>
@@ -81,7 +83,8 @@ struct CollisionChecker::MotionSearch {
     kSelfPair,
     kSelfCluster,
     kSelfPieceRow,
-    kSelfPieceColumn
+    kSelfPieceColumn,
+    kEnvironmentGroup
   };
   // kOpen: a bounding hull decided nothing; its block's pieces are tested (hull_outcome).
   enum class Outcome { kCertified, kPending, kContact, kOpen };
@@ -124,6 +127,13 @@ struct CollisionChecker::MotionSearch {
   Outcome examine(double m, const std::vector<Item>& in, int begin, int end);
   Outcome test(const Item& item);
   Outcome test_environment_block(const Item& item);
+  /// A shape group against every obstacle (its environment blocks) while the interval is too
+  /// coarse to tell them apart: certified, kept whole (probed for contact), or opened into its
+  /// blocks. One item per group instead of one per group and obstacle at the coarse levels,
+  /// where most are kept (the UR5: 126 blocks tested per motion at the first level). Measured
+  /// (bench_vamp, 30 Panda / 10 UR5 problems per family, three alternations, process user
+  /// time): Panda 3.48 -> 3.32 s, UR5 9.20 -> 8.97 s, the same states and exact queries.
+  Outcome test_environment_group(const Item& item);
   Outcome test_self_block(const Item& item);
   /// The pairs of a self block whose link hulls come within min_clearance: per shape of the
   /// link with fewer, that shape against the other link's hull, each an item (test_piece_line).
@@ -271,10 +281,12 @@ MotionCheckResult CollisionChecker::MotionSearch::run() {
   // The root interval [0, 1] holds every block (none: nothing to check).
   s.motion_items.clear();
   s.motion_intervals.clear();
-  for (std::size_t b = 0; b < c.blocks_.size(); ++b) {
-    const auto g = static_cast<Eigen::Index>(c.blocks_[b].group);
+  // Per shape group, its blocks against every obstacle as one item (test_environment_group).
+  for (std::size_t g = 0; g + 1 < levers.group_blocks.size(); ++g) {
+    if (levers.group_blocks[g] == levers.group_blocks[g + 1]) continue;  // no obstacle checked
     s.motion_items.push_back(
-        {kEnvironmentBlock, static_cast<int>(b), levers.group_levers.row(g).dot(abs_dq) + extra});
+        {kEnvironmentGroup, static_cast<int>(g),
+         levers.group_levers.row(static_cast<Eigen::Index>(g)).dot(abs_dq) + extra});
   }
   for (std::size_t k = 0; k < c.self_blocks_.size(); ++k) {
     if (c.cluster_of_block_[k] >= 0) continue;
@@ -469,6 +481,8 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test(con
     case kSelfPieceRow:
     case kSelfPieceColumn:
       return test_piece_line(item);
+    case kEnvironmentGroup:
+      return test_environment_group(item);
     default:
       return test_pair(c.environment_pairs_.size() + static_cast<std::size_t>(item.index), item);
   }
@@ -496,6 +510,41 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_env
     }
   }
   return test_block_pairs(kEnvironmentPair, block.begin, block.end);
+}
+
+CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_environment_group(
+    const Item& item) {
+  const auto g = static_cast<std::size_t>(item.index);
+  const int first = levers.group_blocks[g], last = levers.group_blocks[g + 1];
+  const Eigen::Vector3d& ball_centre = s.group_centers[g];
+  const double radius = s.group_radii[g];
+  const double inflated = margin(item.rate);
+  const auto gap = [&](int b) {
+    const EnvironmentBlock& block = c.blocks_[static_cast<std::size_t>(b)];
+    return c.box_gap(c.boxes_[static_cast<std::size_t>(block.obstacle)], ball_centre, radius);
+  };
+  // The smallest gap of the obstacles within the margin (the others are certified).
+  double lower = std::numeric_limits<double>::infinity();
+  for (int b = first; b < last; ++b) lower = std::min(lower, gap(b));
+  if (lower > inflated) return Outcome::kCertified;
+  if (!coarse(inflated, radius, item.rate)) {
+    // Fine enough to tell the obstacles apart: each block an item of its own (the ones the
+    // group's ball certifies again at once).
+    return test_each(last - first, [&](int i) {
+      return Item{kEnvironmentBlock, first + i, item.rate};
+    });
+  }
+  // Kept whole, tested for contact only: a box the group's ball reaches (a ball clear of an
+  // obstacle's box holds no shape touching it).
+  for (int b = first; b < last; ++b) {
+    if (gap(b) <= 0.0 && c.environment_block_collides(b, s)) {
+      out->push_back(item);
+      contact_rate = item.rate;
+      return Outcome::kContact;
+    }
+  }
+  keep(item, lower);
+  return Outcome::kPending;
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_self_block(
