@@ -300,6 +300,7 @@ void CollisionChecker::build_environment_pairs(
     for (int i = 0; i < 3; ++i) box_values_.push_back(box.center[i]);
     for (int i = 0; i < 3; ++i) box_values_.push_back(box.half_extents[i]);
   }
+  group_block_begin_.assign(1, 0);
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     for (int o = 0; o < static_cast<int>(scene_.obstacles.size()); ++o) {
       const int begin = static_cast<int>(environment_pairs_.size());
@@ -313,6 +314,7 @@ void CollisionChecker::build_environment_pairs(
       const int end = static_cast<int>(environment_pairs_.size());
       if (end > begin) blocks_.push_back({g, o, begin, end});
     }
+    group_block_begin_.push_back(static_cast<int>(blocks_.size()));
   }
 }
 

@@ -175,9 +175,6 @@ struct CollisionChecker::MotionLevers {
   // check_motion: per shape group / self block, the largest of its members' levers per value
   // (their dot product with |dq| bounds every member's).
   Eigen::MatrixXd group_levers;  // groups x values
-  // check_motion: per shape group g, its environment blocks blocks_[group_blocks[g] ..
-  // group_blocks[g + 1]) (blocks_ are ordered by group).
-  std::vector<int> group_blocks;
   // Per self block: its links are moved relative to each other by more than two values (no
   // distance table can hold it; check_motion splits it into lines, see test_block_lines).
   std::vector<char> many_drivers;

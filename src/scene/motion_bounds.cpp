@@ -4,7 +4,6 @@
 #include <cmath>
 #include <hullcheck/core/errors.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
-#include <stdexcept>
 #include <variant>
 #include <vector>
 
@@ -243,18 +242,6 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
     levers.row(static_cast<Eigen::Index>(row)) =
         levers.row(static_cast<Eigen::Index>(row)).cwiseMax(member);
   };
-  out.group_blocks.assign(groups_.size() + 1, 0);
-  for (const EnvironmentBlock& block : blocks_) {
-    ++out.group_blocks[static_cast<std::size_t>(block.group) + 1];
-  }
-  for (std::size_t g = 0; g < groups_.size(); ++g) out.group_blocks[g + 1] += out.group_blocks[g];
-  for (std::size_t b = 0; b < blocks_.size(); ++b) {  // build_environment_pairs' order
-    const auto g = static_cast<std::size_t>(blocks_[b].group);
-    if (static_cast<int>(b) < out.group_blocks[g] ||
-        static_cast<int>(b) >= out.group_blocks[g + 1]) {
-      throw std::logic_error("CollisionChecker: environment blocks not ordered by group");
-    }
-  }
   out.group_levers = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(groups_.size()), variables);
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     for (int sh = groups_[g].begin; sh < groups_[g].end; ++sh) {

@@ -282,8 +282,8 @@ MotionCheckResult CollisionChecker::MotionSearch::run() {
   s.motion_items.clear();
   s.motion_intervals.clear();
   // Per shape group, its blocks against every obstacle as one item (test_environment_group).
-  for (std::size_t g = 0; g + 1 < levers.group_blocks.size(); ++g) {
-    if (levers.group_blocks[g] == levers.group_blocks[g + 1]) continue;  // no obstacle checked
+  for (std::size_t g = 0; g < c.groups_.size(); ++g) {
+    if (c.group_block_begin_[g] == c.group_block_begin_[g + 1]) continue;  // no obstacle checked
     s.motion_items.push_back(
         {kEnvironmentGroup, static_cast<int>(g),
          levers.group_levers.row(static_cast<Eigen::Index>(g)).dot(abs_dq) + extra});
@@ -515,7 +515,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_env
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_environment_group(
     const Item& item) {
   const auto g = static_cast<std::size_t>(item.index);
-  const int first = levers.group_blocks[g], last = levers.group_blocks[g + 1];
+  const int first = c.group_block_begin_[g], last = c.group_block_begin_[g + 1];
   const Eigen::Vector3d& ball_centre = s.group_centers[g];
   const double radius = s.group_radii[g];
   const double inflated = margin(item.rate);

@@ -388,8 +388,6 @@ class CollisionChecker {
   void is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& configurations, Eigen::Index first,
                       int count, bool* valid, Scratch& s) const;
   bool self_block_collides(int block, Scratch& s) const;
-  // Marks (s.meets_other = mark) the shapes of link ball `link_ball` meeting `other` at its
-  // pose; true when any does.
   /// True when self cluster `cluster`'s two rigid bodies' hulls are apart at the placed poses
   /// (then none of its blocks' pairs meets); computed once per placement.
   bool bodies_apart(int cluster, Scratch& s) const;
@@ -401,6 +399,8 @@ class CollisionChecker {
     const SelfCluster& c = self_clusters_[static_cast<std::size_t>(cluster)];
     return c.end - c.begin > kGroupSize;
   }
+  // Marks (s.meets_other = mark) the shapes of link ball `link_ball` meeting `other` at its
+  // pose; true when any does.
   bool mark_pieces_meeting(int link_ball, const Shape& other, const Eigen::Isometry3d& other_pose,
                            std::uint64_t mark, Scratch& s) const;
   void place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const;
@@ -457,6 +457,9 @@ class CollisionChecker {
   std::vector<int> group_ball_begin_, group_balls_;
   std::vector<int> self_block_balls_;  // per self block: link_a, link_b (the SIMD ball tests)
   std::vector<EnvironmentBlock> blocks_;
+  // Per shape group g: its environment blocks, blocks_[group_block_begin_[g] ..
+  // group_block_begin_[g + 1]) (check_motion's per-group items).
+  std::vector<int> group_block_begin_;
   bool has_self_pairs_ = false;
   std::vector<RigidBodyHull> bodies_;  // the rigid bodies of self_clusters_
   std::vector<SelfCluster> self_clusters_;
