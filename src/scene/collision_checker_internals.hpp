@@ -180,9 +180,9 @@ struct CollisionChecker::MotionLevers {
   std::vector<char> many_drivers;
   Eigen::MatrixXd cluster_levers;     // self clusters x values: the largest of their blocks'
   Eigen::MatrixXd self_block_levers;  // self blocks x values
-  // check_motion's directional rates: per robot shape, the movable joints above its link from
-  // the root down, and per joint and shape the lever per unit of the joint's own value.
-  std::vector<std::vector<int>> shape_chains;
+  // check_motion's directional rates: per model link, the movable joints above it from the
+  // root down, and per joint and shape the lever per unit of the joint's own value.
+  std::vector<std::vector<int>> link_chains;
   const Eigen::MatrixXd* joint_arms = nullptr;  // joints x shapes: the model's shared ones
 };
 

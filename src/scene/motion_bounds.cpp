@@ -214,23 +214,32 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
     const double m = std::abs(joint.driver_multiplier());
     out.lever[v] += m * arm.row(ji).maxCoeff();
     out.shape_levers.col(v) += m * arm.row(ji).transpose();
-    for (std::size_t p = 0; p < self_pairs_.size(); ++p) {
-      const int a = self_pairs_[p].a, b = self_pairs_[p].b;
-      const bool above_a =
-          above[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(a)].link)]
-               [static_cast<std::size_t>(ji)];
-      const bool above_b =
-          above[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(b)].link)]
-               [static_cast<std::size_t>(ji)];
-      if (above_a == above_b) continue;  // moves both rigidly, or neither
-      out.self_pair_levers(static_cast<Eigen::Index>(p), v) += m * arm(ji, above_a ? a : b);
+  }
+  // A self pair's: the joints above exactly one of its links move one shape relative to the
+  // other (those above both move them rigidly together). Per block (one link pair), the joints
+  // once, then its pairs: a column's entries are consecutive (decomposed links have thousands).
+  for (const SelfBlock& block : self_blocks_) {
+    const int link_a = link_balls_[static_cast<std::size_t>(block.link_a)].link;
+    const int link_b = link_balls_[static_cast<std::size_t>(block.link_b)].link;
+    for (int ji = 0; ji < joint_count; ++ji) {
+      const Joint& joint = model_->joint(ji);
+      if (joint.type == JointType::kFixed) continue;
+      const bool above_a = above[static_cast<std::size_t>(link_a)][static_cast<std::size_t>(ji)];
+      const bool above_b = above[static_cast<std::size_t>(link_b)][static_cast<std::size_t>(ji)];
+      if (above_a == above_b) continue;
+      const double m = std::abs(joint.driver_multiplier());
+      double* column = out.self_pair_levers.col(joint.driver()).data();
+      for (int p = block.begin; p < block.end; ++p) {
+        const SelfPair& pair = self_pairs_[static_cast<std::size_t>(p)];
+        column[p] += m * arm(ji, above_a ? pair.a : pair.b);
+      }
     }
   }
   out.joint_arms = &arm;
-  out.shape_chains.assign(shapes_.size(), {});
-  for (std::size_t sh = 0; sh < shapes_.size(); ++sh) {
-    std::vector<int>& chain = out.shape_chains[sh];
-    for (int l = shapes_[sh].link; model_->link(l).parent_joint >= 0;) {
+  out.link_chains.assign(model_->links().size(), {});
+  for (std::size_t link = 0; link < model_->links().size(); ++link) {
+    std::vector<int>& chain = out.link_chains[link];
+    for (int l = static_cast<int>(link); model_->link(l).parent_joint >= 0;) {
       const int j = model_->link(l).parent_joint;
       if (model_->joint(j).type != JointType::kFixed) chain.push_back(j);
       l = model_->joint(j).parent_link;
@@ -251,9 +260,9 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
   out.self_block_levers =
       Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(self_blocks_.size()), variables);
   for (std::size_t k = 0; k < self_blocks_.size(); ++k) {
-    for (int p = self_blocks_[k].begin; p < self_blocks_[k].end; ++p) {
-      raise(out.self_block_levers, k, out.self_pair_levers.row(p));
-    }
+    const SelfBlock& block = self_blocks_[k];
+    out.self_block_levers.row(static_cast<Eigen::Index>(k)) =
+        out.self_pair_levers.middleRows(block.begin, block.end - block.begin).colwise().maxCoeff();
   }
   out.many_drivers.assign(self_blocks_.size(), 0);
   for (std::size_t k = 0; k < self_blocks_.size(); ++k) {

@@ -829,9 +829,12 @@ double CollisionChecker::MotionSearch::directional_rate(int a, int b,
   // speeds of the revolute joints above j: |n x u_j(t)| <= |n x u_j(m)| + that angle (and <= 1).
   // A prismatic joint moves its points by qdot_j u_j: |n . u_j| bounded the same way.
   const std::vector<Eigen::Isometry3d>& poses = *s.link_poses_in;
-  const std::vector<int>& chain_a = levers.shape_chains[static_cast<std::size_t>(a)];
-  const std::vector<int>* chain_b =
-      b >= 0 ? &levers.shape_chains[static_cast<std::size_t>(b)] : nullptr;
+  const auto chain_of = [&](int shape) -> const std::vector<int>& {
+    return levers
+        .link_chains[static_cast<std::size_t>(c.shapes_[static_cast<std::size_t>(shape)].link)];
+  };
+  const std::vector<int>& chain_a = chain_of(a);
+  const std::vector<int>* chain_b = b >= 0 ? &chain_of(b) : nullptr;
   std::size_t common = 0;  // joints above both links move them rigidly together
   if (chain_b != nullptr) {
     while (common < chain_a.size() && common < chain_b->size() &&
