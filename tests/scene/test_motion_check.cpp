@@ -118,6 +118,22 @@ TEST(MotionCheck, ThinPlateBetweenSamplesIsRejected) {
   EXPECT_LE(r.last_free * end, swing.rising_contact());
   EXPECT_NEAR(r.contact * end, swing.rising_contact(),
               2e-4 / (swing.R * std::cos(swing.rising_contact())));
+  // The yes/no mode (a block of sampled intervals first, then the search on the ones left)
+  // rejects it too, with a contact on the plate; so in both directions, and a swing stopping
+  // 1 mm of ball travel short of it is free.
+  MotionCheckOptions yes_no;
+  yes_no.locate_contact = false;
+  for (const double from : {0.0, end}) {
+    const MotionCheckResult first =
+        swing.checker->check_motion(swing.q(from), swing.q(end - from), yes_no);
+    EXPECT_EQ(first.verdict, MotionVerdict::kContact) << "from " << from;
+    const double angle = from + first.contact * (end - 2.0 * from);
+    EXPECT_NEAR(swing.R * std::sin(angle), swing.y_plate,
+                swing.e + swing.r + yes_no.min_clearance + 1e-9)
+        << "from " << from;
+  }
+  const double short_of = swing.rising_contact() - 0.001 / swing.R;
+  EXPECT_TRUE(swing.checker->check_motion(swing.q(0), swing.q(short_of), yes_no).free());
 }
 
 TEST(MotionCheck, BadInputIsAnError) {

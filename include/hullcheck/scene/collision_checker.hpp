@@ -384,6 +384,20 @@ class CollisionChecker {
   /// covering spheres and, for a self block where they leave it below max(e, 0+), its table.
   void refine_block_gap(const Eigen::Ref<const Eigen::MatrixXd>& configurations, Eigen::Index first,
                         int count, std::size_t b, double e, double* gap, Scratch& s) const;
+  /// check_motion's environment over the motion q0 + t dq (t in [0, 1]) at once
+  /// (motion_sweep.cpp): returns the lanes k whose interval [k, k + 1] / kPoseBlockLanes the
+  /// shapes' volumes at its middle prove clear of every obstacle by more than min_clearance;
+  /// *colliding receives lanes proven in collision at their middle (inner balls in a box
+  /// obstacle, within the blocks tested before every lane had failed). `extra`: the prismatic
+  /// excess per unit t. Fills s.motion_probes and the block scratch (place_block).
+  std::uint8_t sweep_environment(const Eigen::Ref<const Eigen::VectorXd>& q0,
+                                 const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_dq,
+                                 double extra, double min_clearance, std::uint8_t* colliding,
+                                 Scratch& s) const;
+  /// The same for the self blocks, at the block sweep_environment placed.
+  std::uint8_t sweep_self(const Eigen::Ref<const Eigen::VectorXd>& q0, const Eigen::VectorXd& dq,
+                          const Eigen::VectorXd& abs_dq, double extra, double min_clearance,
+                          Scratch& s) const;
   /// is_valid_batch for one block of up to kPoseBlockLanes columns starting at `first`.
   void is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& configurations, Eigen::Index first,
                       int count, bool* valid, Scratch& s) const;
