@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <hullcheck/core/errors.hpp>
@@ -66,11 +67,43 @@ bool GuaranteedMotionValidator::checkMotion(const ob::State* s1, const ob::State
   const bool ok = advance(s1, s2, &last_free);
   (ok ? valid_motions_ : invalid_motions_).fetch_add(1, std::memory_order_relaxed);
   if (ok) return true;
+  // A planner keeps s1 -> the last valid state as a motion of its own (KPIECE does), and its
+  // path is re-checked motion by motion: checkMotion(s1, that state) must accept it. Its end
+  // lies within `resolution` of the contact, possibly inside the band where the yes/no search
+  // calls it near contact: then it moves back by 1, 4 and 16 times the fraction over which no
+  // point moves more than `resolution` (motion_bound), and to 0 when none is accepted. Checked
+  // on the state itself (as interpolated and stored), so that the re-check is the same query.
+  const ob::StateSpacePtr& space = si_->getStateSpace();
+  ob::State* end = last_valid.first != nullptr ? last_valid.first : si_->allocState();
+  if (last_free > 0.0) {
+    const double unit = options_.resolution / std::max(motion_bound(s1, s2), 1e-300);
+    double t = last_free;
+    for (int attempt = 0; t > 0.0; ++attempt) {
+      space->interpolate(s1, s2, t, end);
+      if (advance(s1, end, nullptr)) break;
+      t = attempt == 3 ? 0.0
+                       : std::max(0.0, last_free - unit * static_cast<double>(1 << (2 * attempt)));
+    }
+    last_free = t;
+  }
   last_valid.second = last_free;
   if (last_valid.first != nullptr) {
-    si_->getStateSpace()->interpolate(s1, s2, last_free, last_valid.first);
+    space->interpolate(s1, s2, last_free, last_valid.first);
+  } else {
+    si_->freeState(end);
   }
   return false;
+}
+
+double GuaranteedMotionValidator::motion_bound(const ob::State* s1, const ob::State* s2) const {
+  const JointStateSpace& joints = validity_->joint_space();
+  thread_local Eigen::VectorXd q0, q1;
+  const auto n = joints.fixed_configuration().size();
+  q0.resize(n);
+  q1.resize(n);
+  joints.to_configuration(s1, q0);
+  joints.to_configuration(s2, q1);
+  return validity_->collision_checker().motion_bound(q0, q1);
 }
 
 }  // namespace hullcheck

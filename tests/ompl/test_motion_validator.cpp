@@ -344,7 +344,9 @@ TEST(GuaranteedMotions, MotionIntoCollisionIsRejected) {
   ob::ScopedState<> valid(si->getStateSpace()), colliding(si->getStateSpace()),
       last(si->getStateSpace());
   int checked = 0;
-  for (int k = 0; k < 200 && checked < test::scaled(10, 3); ++k) {
+  // About 2% of these motions' last valid states lie inside the band where the yes/no search
+  // says "near contact" (62 of 3000 on 2026-12-07): the validator moves them back.
+  for (int k = 0; k < 6000 && checked < test::scaled(300, 30); ++k) {
     ASSERT_TRUE(test::sample_valid(*si, sampler, valid.get()));
     sampler.near(valid.get(), 0.5, colliding.get());
     if (si->isValid(colliding.get())) continue;
@@ -357,20 +359,22 @@ TEST(GuaranteedMotions, MotionIntoCollisionIsRejected) {
     EXPECT_GE(last_valid.second, 0.0);
     EXPECT_LT(last_valid.second, 1.0);
     EXPECT_TRUE(si->isValid(last.get()));
-    // The motion up to it was proven free; checked again, it is accepted unless its end lies
-    // within min_clearance + resolution of contact (the band where the check may say "maybe").
-    const MotionCheckOptions& options =
-        dynamic_cast<const GuaranteedMotionValidator&>(*si->getMotionValidator()).options();
-    if (!si->checkMotion(valid.get(), last.get())) {
-      EXPECT_LE(setup.validity->clearance(last.get()), options.min_clearance + options.resolution);
-    }
+    // The motion up to it was proven free, and checked again it is accepted (a planner keeps
+    // it as a motion of its own, which its path's re-check meets again), in both overloads.
+    EXPECT_TRUE(si->checkMotion(valid.get(), last.get())) << "motion " << k;
+    std::pair<ob::State*, double> unused(nullptr, -1.0);
+    EXPECT_TRUE(si->getMotionValidator()->checkMotion(valid.get(), last.get(), unused));
+    // Without a state to fill, the same fraction.
+    std::pair<ob::State*, double> fraction_only(nullptr, -1.0);
+    si->getMotionValidator()->checkMotion(valid.get(), colliding.get(), fraction_only);
+    EXPECT_EQ(fraction_only.second, last_valid.second) << "motion " << k;
     // Starting in collision: nothing of the motion is valid.
     std::pair<ob::State*, double> from_collision(nullptr, -1.0);
     EXPECT_FALSE(
         si->getMotionValidator()->checkMotion(colliding.get(), valid.get(), from_collision));
     EXPECT_EQ(from_collision.second, 0.0);
   }
-  EXPECT_GE(checked, test::scaled(10, 3));
+  EXPECT_GE(checked, test::scaled(300, 30));
   // A motion of length zero at a valid state is valid.
   EXPECT_TRUE(si->checkMotion(valid.get(), valid.get()));
 }

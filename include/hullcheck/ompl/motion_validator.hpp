@@ -22,7 +22,10 @@ namespace hullcheck {
 /// within min_clearance + `options.resolution` (default 1e-4 m), and is after
 /// `options.max_states` configurations without a decision (never reported as success). On
 /// rejection the last valid fraction is the end of the proven-free part, before the contact
-/// found, with no pair moving more than `resolution` between the two. Both overloads give the
+/// found, with no pair moving more than `resolution` between the two (moved back by up to 16
+/// times that where checkMotion(s1, last valid state) would not accept the part kept, inside
+/// the band; 0 when even that is not accepted; without a state to fill, one is allocated for
+/// that check). Both overloads give the
 /// same verdict for the same motion (the yes/no search decides; the overload with a last valid
 /// state then locates the contact). Thread-safe; OMPL's own
 /// valid/invalid counters (plain integers, racy under parallel planners) are left at zero, the
@@ -51,6 +54,8 @@ class GuaranteedMotionValidator : public ::ompl::base::MotionValidator {
   /// receives the fraction of the motion in [0, 1] certified free from s1 (1 when free).
   bool advance(const ::ompl::base::State* s1, const ::ompl::base::State* s2,
                double* last_free) const;
+  /// CollisionChecker::motion_bound of s1 -> s2 (m over the whole motion).
+  double motion_bound(const ::ompl::base::State* s1, const ::ompl::base::State* s2) const;
 
   std::shared_ptr<const StateValidityChecker> validity_;
   MotionCheckOptions options_;
