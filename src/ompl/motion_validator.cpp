@@ -40,6 +40,9 @@ bool GuaranteedMotionValidator::advance(const ob::State* s1, const ob::State* s2
   // a path accepted through checkMotion(s1, s2) would be rejected when re-checked with a last
   // valid state.
   options.locate_contact = false;
+  // A motion from the state just validated (to an existing one, usually): its end is not
+  // tested first.
+  options.end_first = !validity_->last_valid_is(q0);
   const MotionCheckResult r = checker.check_motion(q0, q1, options);
   steps_.fetch_add(static_cast<unsigned long>(r.states), std::memory_order_relaxed);
   if (r.free() || last_free == nullptr) {

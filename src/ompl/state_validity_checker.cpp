@@ -27,8 +27,30 @@ Eigen::VectorXd& StateValidityChecker::configuration(const ::ompl::base::State* 
   return q;
 }
 
+namespace {
+
+// This thread's last isValid(state) answer: the checker, the configuration and the verdict.
+struct LastAnswer {
+  const void* checker = nullptr;
+  Eigen::VectorXd q;
+  bool valid = false;
+};
+thread_local LastAnswer last_answer;
+
+}  // namespace
+
 bool StateValidityChecker::isValid(const ::ompl::base::State* state) const {
-  return checker_->is_valid(configuration(state));
+  const Eigen::VectorXd& q = configuration(state);
+  const bool valid = checker_->is_valid(q);
+  last_answer.checker = this;
+  last_answer.q = q;  // sized once per thread (no allocation after)
+  last_answer.valid = valid;
+  return valid;
+}
+
+bool StateValidityChecker::last_valid_is(const Eigen::VectorXd& q) const {
+  return last_answer.checker == this && last_answer.valid && last_answer.q.size() == q.size() &&
+         last_answer.q == q;
 }
 
 void StateValidityChecker::set_clearance_scope(std::shared_ptr<const PairScope> scope) {

@@ -291,7 +291,7 @@ MotionCheckResult CollisionChecker::MotionSearch::run() {
   // The root interval [0, 1] holds every block (none: nothing to check).
   s.motion_items.clear();
   s.motion_intervals.clear();
-  if (!options.locate_contact) {
+  if (!options.locate_contact && options.end_first) {
     // The motion's end first, as OMPL's discrete validator does: a planner's new state collides
     // more often than any other of the motion, and is_valid's verdict (a collision there is a
     // contact: signed distance <= 0 <= min_clearance) is cheaper than the first level's tests

@@ -87,14 +87,20 @@ class HullcheckValidity : public ob::StateValidityChecker {
   bool isValid(const ob::State* state) const override {
     thread_local Eigen::VectorXd q;
     configuration(state, q);
-    return checker_->is_valid(q);
+    last_valid_ = checker_->is_valid(q);
+    last_ = q;
+    return last_valid_;
   }
+  // As hullcheck::StateValidityChecker::last_valid_is (one planning thread here).
+  bool last_valid_is(const Eigen::VectorXd& q) const { return last_valid_ && last_ == q; }
   const hullcheck::CollisionChecker& checker() const { return *checker_; }
 
  private:
   std::shared_ptr<const hullcheck::CollisionChecker> checker_;
   std::vector<int> variables_;
   Eigen::VectorXd fixed_;
+  mutable Eigen::VectorXd last_;
+  mutable bool last_valid_ = false;
 };
 
 // What the certified motions cost, over the whole run (one thread).
@@ -128,6 +134,7 @@ class HullcheckMotions : public ob::MotionValidator {
     validity_->configuration(b, q1);
     hullcheck::MotionCheckOptions options;
     options.locate_contact = last_free != nullptr;
+    options.end_first = !validity_->last_valid_is(q0);  // as GuaranteedMotionValidator
     const hullcheck::MotionCheckResult r = validity_->checker().check_motion(q0, q1, options);
     ++tally.motions;
     tally.free += r.free();

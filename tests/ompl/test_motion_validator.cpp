@@ -462,6 +462,11 @@ void check_validity_contract(const PlanningSetup& setup, int samples, unsigned s
     EXPECT_EQ(closest.distance, exact.distance);
     EXPECT_EQ(closest.name_a, exact.name_a);
     EXPECT_EQ(closest.name_b, exact.name_b);
+    // The last isValid(state) answer on this thread: this configuration, when valid.
+    EXPECT_EQ(v.last_valid_is(q), plain);
+    Eigen::VectorXd moved = q;
+    moved[v.joint_space().variables().front()] += 1e-9;
+    EXPECT_FALSE(v.last_valid_is(moved));
     (plain ? valid : invalid)++;
   }
   EXPECT_GT(valid, 0);

@@ -134,6 +134,11 @@ TEST(MotionCheck, ThinPlateBetweenSamplesIsRejected) {
   }
   const double short_of = swing.rising_contact() - 0.001 / swing.R;
   EXPECT_TRUE(swing.checker->check_motion(swing.q(0), swing.q(short_of), yes_no).free());
+  // Without the end state first: the same verdicts.
+  yes_no.end_first = false;
+  EXPECT_EQ(swing.checker->check_motion(swing.q(0), swing.q(end), yes_no).verdict,
+            MotionVerdict::kContact);
+  EXPECT_TRUE(swing.checker->check_motion(swing.q(0), swing.q(short_of), yes_no).free());
 }
 
 TEST(MotionCheck, BadInputIsAnError) {

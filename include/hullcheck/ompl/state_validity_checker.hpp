@@ -56,6 +56,13 @@ class StateValidityChecker : public ::ompl::base::StateValidityChecker {
   unsigned long check_count() const { return checks_.load(std::memory_order_relaxed); }
   void reset_check_count() { checks_.store(0); }
 
+  /// True when this thread's last isValid(state) call on this checker found `q` (a full
+  /// configuration, as joint_space().to_configuration gives it) valid, bit for bit. A planner
+  /// that validates a new state and then checks a motion from it to an existing one (OMPL's
+  /// RRTConnect growing its goal tree, PRM connecting a sample) lets the motion validator skip
+  /// testing the end state first (MotionCheckOptions::end_first).
+  bool last_valid_is(const Eigen::VectorXd& q) const;
+
   const JointStateSpace& joint_space() const { return *space_; }
   const CollisionChecker& collision_checker() const { return *checker_; }
 

@@ -40,6 +40,13 @@ struct MotionCheckOptions {
   /// first colliding one in level order being the contact); last_free is 0 and `contact` the
   /// state found, not necessarily the first.
   bool locate_contact = true;
+  /// Yes/no mode only: test the end state first (is_valid), since a planner's new state, most
+  /// often the motion's end, collides more often than the rest of it. A caller whose end state
+  /// is known valid (the motion starts at the state just validated and ends at an existing one)
+  /// sets it false: whether the motion is proven free does not change, only the order of the
+  /// work (with a valid end state, the same verdict; with a colliding one, a contact found
+  /// elsewhere, or near contact).
+  bool end_first = true;
 };
 
 /// Throws InputError, prefixed with `who`, unless min_clearance is finite and >= 0, resolution
