@@ -16,15 +16,12 @@ GuaranteedMotionValidator::GuaranteedMotionValidator(
   validate(options, "GuaranteedMotionValidator");
 }
 
-bool GuaranteedMotionValidator::advance(const ob::State* s1, const ob::State* s2,
-                                        double* last_free) const {
-  MotionCheckOptions options = options_;
+void GuaranteedMotionValidator::motion_configurations(const ob::State* s1, const ob::State* s2,
+                                                      Eigen::VectorXd& q0,
+                                                      Eigen::VectorXd& q1) const {
   const JointStateSpace& joints = validity_->joint_space();
-  const CollisionChecker& checker = validity_->collision_checker();
-  // Per-thread scratch: sized once, reused (no allocation per motion).
-  thread_local Eigen::VectorXd q0, q1;
   const auto n = joints.fixed_configuration().size();
-  q0.resize(n);
+  q0.resize(n);  // no allocation once sized
   q1.resize(n);
   joints.to_configuration(s1, q0);
   joints.to_configuration(s2, q1);
@@ -34,6 +31,15 @@ bool GuaranteedMotionValidator::advance(const ob::State* s1, const ob::State* s2
       q1[v] = q0[v] + std::remainder(q1[v] - q0[v], 2.0 * M_PI);
     }
   }
+}
+
+bool GuaranteedMotionValidator::advance(const ob::State* s1, const ob::State* s2,
+                                        double* last_free) const {
+  MotionCheckOptions options = options_;
+  const CollisionChecker& checker = validity_->collision_checker();
+  // Per-thread scratch: sized once, reused (no allocation per motion).
+  thread_local Eigen::VectorXd q0, q1;
+  motion_configurations(s1, s2, q0, q1);
   // The verdict comes from the yes/no search (level order, the first contact found settles it)
   // whichever overload asks: the two searches examine different intervals, and within
   // `resolution` of contact one may prove a motion free that the other calls near contact, so
@@ -77,9 +83,12 @@ bool GuaranteedMotionValidator::checkMotion(const ob::State* s1, const ob::State
   // point moves more than `resolution` (motion_bound), and to 0 when none is accepted. Checked
   // on the state itself (as interpolated and stored), so that the re-check is the same query.
   const ob::StateSpacePtr& space = si_->getStateSpace();
-  ob::State* end = last_valid.first != nullptr ? last_valid.first : si_->allocState();
   if (last_free > 0.0) {
-    const double unit = options_.resolution / std::max(motion_bound(s1, s2), 1e-300);
+    ob::State* end = last_valid.first != nullptr ? last_valid.first : si_->allocState();
+    thread_local Eigen::VectorXd q0, q1;
+    motion_configurations(s1, s2, q0, q1);
+    const double unit =
+        options_.resolution / std::max(validity_->collision_checker().motion_bound(q0, q1), 1e-300);
     double t = last_free;
     for (int attempt = 0; t > 0.0; ++attempt) {
       space->interpolate(s1, s2, t, end);
@@ -88,25 +97,11 @@ bool GuaranteedMotionValidator::checkMotion(const ob::State* s1, const ob::State
                        : std::max(0.0, last_free - unit * static_cast<double>(1 << (2 * attempt)));
     }
     last_free = t;
+    if (end != last_valid.first) si_->freeState(end);
   }
   last_valid.second = last_free;
-  if (last_valid.first != nullptr) {
-    space->interpolate(s1, s2, last_free, last_valid.first);
-  } else {
-    si_->freeState(end);
-  }
+  if (last_valid.first != nullptr) space->interpolate(s1, s2, last_free, last_valid.first);
   return false;
-}
-
-double GuaranteedMotionValidator::motion_bound(const ob::State* s1, const ob::State* s2) const {
-  const JointStateSpace& joints = validity_->joint_space();
-  thread_local Eigen::VectorXd q0, q1;
-  const auto n = joints.fixed_configuration().size();
-  q0.resize(n);
-  q1.resize(n);
-  joints.to_configuration(s1, q0);
-  joints.to_configuration(s2, q1);
-  return validity_->collision_checker().motion_bound(q0, q1);
 }
 
 }  // namespace hullcheck

@@ -25,7 +25,7 @@ namespace hullcheck {
 /// found, with no pair moving more than `resolution` between the two (moved back by up to 16
 /// times that where checkMotion(s1, last valid state) would not accept the part kept, inside
 /// the band; 0 when even that is not accepted; without a state to fill, one is allocated for
-/// that check). Both overloads give the
+/// that check, on rejections with a last valid fraction above 0 only). Both overloads give the
 /// same verdict for the same motion (the yes/no search decides; the overload with a last valid
 /// state then locates the contact). Thread-safe; OMPL's own
 /// valid/invalid counters (plain integers, racy under parallel planners) are left at zero, the
@@ -54,8 +54,10 @@ class GuaranteedMotionValidator : public ::ompl::base::MotionValidator {
   /// receives the fraction of the motion in [0, 1] certified free from s1 (1 when free).
   bool advance(const ::ompl::base::State* s1, const ::ompl::base::State* s2,
                double* last_free) const;
-  /// CollisionChecker::motion_bound of s1 -> s2 (m over the whole motion).
-  double motion_bound(const ::ompl::base::State* s1, const ::ompl::base::State* s2) const;
+  /// The configurations of s1 and s2 (full, the model's values) for the motion between them:
+  /// continuous joints' end values unwrapped the short way round, as OMPL interpolates them.
+  void motion_configurations(const ::ompl::base::State* s1, const ::ompl::base::State* s2,
+                             Eigen::VectorXd& q0, Eigen::VectorXd& q1) const;
 
   std::shared_ptr<const StateValidityChecker> validity_;
   MotionCheckOptions options_;
