@@ -110,9 +110,30 @@ struct CollisionChecker::Scratch {
 // would give the same verdict.
 constexpr double kTableSlack = 1e-6;
 
+// One link's shapes turned through a whole turn about the axis of the joint next to it on the
+// way to another link (swept_links.cpp): each is contained in its SweptShape whatever that
+// joint's value, so distances to them bound the link's from below over every value of it.
+namespace detail {
+struct SweptShape {
+  Shape shape;             // link frame: a hull of turned copies, grown by the chord's sag
+  Eigen::Vector3d center;  // a ball containing `shape`, link frame
+  double radius = 0.0;
+};
+}  // namespace detail
+struct CollisionChecker::SweptLink {
+  using SweptShape = detail::SweptShape;
+  int link = -1;                      // model link index
+  int driver = -1;                    // the configuration value the sweep removes
+  std::vector<SweptShape> shapes;     // per collision shape of the link (its index there)
+  std::unique_ptr<SweptShape> bound;  // the link's bounding shape swept, when it has one
+};
+
 struct CollisionChecker::SelfTable : JointGrid {
   static constexpr std::uint64_t kUnmeasured = ~std::uint64_t{0};
   std::size_t cell_count = 0;
+  // Blocks moved by one value more than a table holds: one link swept (its upper bounds are
+  // then +infinity: the sweep proves no contact).
+  std::shared_ptr<const SweptLink> swept;
   // How far the links move relative to each other between a cell's centre and any point of
   // it, m: per pair of the block (in its order), and at most over the block.
   std::vector<double> pair_reach;
@@ -175,8 +196,8 @@ struct CollisionChecker::MotionLevers {
   // check_motion: per shape group / self block, the largest of its members' levers per value
   // (their dot product with |dq| bounds every member's).
   Eigen::MatrixXd group_levers;  // groups x values
-  // Per self block: its links are moved relative to each other by more than two values (no
-  // distance table can hold it; check_motion splits it into lines, see test_block_lines).
+  // Per self block: its links are moved relative to each other by more than two values (its
+  // table, if any, sweeps a link; check_motion splits it into lines, see test_block_lines).
   std::vector<char> many_drivers;
   Eigen::MatrixXd cluster_levers;     // self clusters x values: the largest of their blocks'
   Eigen::MatrixXd self_block_levers;  // self blocks x values

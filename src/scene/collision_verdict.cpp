@@ -46,13 +46,18 @@ namespace {
   return false;
 }
 
-bool CollisionChecker::mark_pieces_meeting(int link_ball, const Shape& other,
+bool CollisionChecker::mark_pieces_meeting(int link_ball, int other_ball, const Shape& other,
                                            const Eigen::Isometry3d& other_pose, std::uint64_t mark,
                                            Scratch& s) const {
   bool any = false;
   const int l = link_balls_[static_cast<std::size_t>(link_ball)].link;
+  // The other link's ball contains its hull: a piece whose ball misses it misses the hull.
+  const Eigen::Vector3d& other_center = s.link_centers[static_cast<std::size_t>(other_ball)];
+  const double other_radius = link_balls_[static_cast<std::size_t>(other_ball)].radius;
   for (int sh = shape_begin_[static_cast<std::size_t>(l)];
        sh < shape_begin_[static_cast<std::size_t>(l) + 1]; ++sh) {
+    const double reach = shapes_[static_cast<std::size_t>(sh)].radius + other_radius;
+    if ((center(sh, s) - other_center).squaredNorm() > reach * reach) continue;
     if (intersect(shape_of(sh), shape_pose(sh, s), other, other_pose)) {
       s.meets_other[static_cast<std::size_t>(sh)] = mark;
       any = true;
@@ -104,8 +109,12 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, const Shape& other,
         // Many piece pairs: each piece against the other link's hull first; only pieces
         // meeting it can meet a piece of that link. A mark is this query and block's stamp.
         mark = (s.stamp << 20) + static_cast<std::uint64_t>(&block - self_blocks_.data()) + 1;
-        if (!mark_pieces_meeting(block.link_a, hull_b, pose_b, mark, s)) return false;
-        if (!mark_pieces_meeting(block.link_b, hull_a, pose_a, mark, s)) return false;
+        if (!mark_pieces_meeting(block.link_a, block.link_b, hull_b, pose_b, mark, s)) {
+          return false;
+        }
+        if (!mark_pieces_meeting(block.link_b, block.link_a, hull_a, pose_a, mark, s)) {
+          return false;
+        }
       }
     }
   }

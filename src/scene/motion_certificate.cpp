@@ -654,8 +654,8 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
                               inflated, warm_start(static_cast<std::size_t>(item.index)));
     if (const Outcome h = hull_outcome(item, r, lower); h != Outcome::kOpen) return h;
   }
-  // Lines only where no distance table can hold the block (more than two values move its links
-  // relative to each other: a forearm against the wrist's last link). Where one can, the pairs
+  // Lines only where more than two values move the block's links relative to each other (a
+  // forearm against the wrist's last link: a table, if any, sweeps a link). Elsewhere the pairs
   // left are those near each other, which lines only split more finely (measured: UR5 without
   // tables 16.4 -> 17.2 ms with lines there too, 15.8 without).
   if (!levers.many_drivers[static_cast<std::size_t>(item.index)]) {

@@ -10,7 +10,12 @@
 // lever arms, motion_bounds.cpp). Why: along the straight joint-space motion from c to q in C,
 // pair p's signed distance changes by at most sum_v lever_{p,v} |q_v - c_v| <= reach_p (only
 // the keying values move one link relative to the other; the other values move both rigidly).
-// A value of a continuous joint is taken modulo one turn (the same pose). Per pair the bounds
+// A value of a continuous joint is taken modulo one turn (the same pose). Links moved by three
+// values get a table over two: one link is swept through a turn about the joint next to it
+// (swept_links.cpp; the link whose sweep grows its hulls least), its shapes replaced by the
+// sweeps, which contain it at every value of that joint; such a table's upper bounds are
+// +infinity, and a pair whose sweep meets the other shape bounds lower by the balls' gap (no
+// penetration depth measured: such a cell decides nothing anyway). Per pair the bounds
 // use the pair's own levers: pieces near the joints that move them barely move, so a block of
 // links always close at their joint (a decomposed upper arm over its base) is still proven
 // apart by the pieces that matter.
@@ -41,6 +46,7 @@
 #include <hullcheck/core/queries.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
 #include <limits>
+#include <map>
 #include <mutex>
 
 #include "collision_checker_internals.hpp"
@@ -135,6 +141,14 @@ const std::vector<CollisionChecker::SelfTable*>& CollisionChecker::set_up_self_t
     out.per_block.assign(self_blocks_.size(), nullptr);
     const MotionLevers& levers = motion_levers();
     const std::lock_guard<std::mutex> lock(shared.mutex);
+    // Links swept for this set-up, by (link ball, joint): a link is swept about the same
+    // joint for every link beyond it (a forearm against a gripper's links).
+    std::map<std::pair<int, int>, std::shared_ptr<const SweptLink>> sweeps;
+    const auto sweep = [&](int x, int joint) {
+      const auto [it, fresh] = sweeps.try_emplace({x, joint});
+      if (fresh) it->second = sweep_link(x, joint);
+      return it->second;
+    };
     for (std::size_t k = 0; k < self_blocks_.size(); ++k) {
       const SelfBlock& block = self_blocks_[k];
       const LinkBall& ball_a = link_balls_[static_cast<std::size_t>(block.link_a)];
@@ -145,10 +159,23 @@ const std::vector<CollisionChecker::SelfTable*>& CollisionChecker::set_up_self_t
       if (!table) {
         int keys[kMaxGridValues];
         bool revolute = true;
-        const int key_count =
-            relative_drivers(ball_a.link, ball_b.link, kMaxGridValues, keys, &revolute);
-        if (key_count > kMaxTableValues || !revolute) continue;
+        int key_count = relative_drivers(ball_a.link, ball_b.link, kMaxGridValues, keys, &revolute);
+        if (key_count > kMaxTableValues + 1 || !revolute) continue;
+        std::shared_ptr<const SweptLink> swept;
+        if (key_count > kMaxTableValues) {
+          // One value too many: the link whose sweep grows it least is swept, its joint's value
+          // dropped from the keys.
+          const int joint_a = sweep_joint(block.link_a, block.link_b, key_count);
+          const int joint_b = sweep_joint(block.link_b, block.link_a, key_count);
+          if (joint_a < 0 || joint_b < 0) continue;
+          swept = sweep_growth(block.link_a, joint_a) <= sweep_growth(block.link_b, joint_b)
+                      ? sweep(block.link_a, joint_a)
+                      : sweep(block.link_b, joint_b);
+          if (!swept) continue;
+          key_count = static_cast<int>(std::remove(keys, keys + key_count, swept->driver) - keys);
+        }
         auto made = std::make_unique<SelfTable>();
+        made->swept = swept;
         made->cell_count = made->setup(*model_, keys, key_count, kCellsPerValue[key_count]);
         if (shared.cells + made->cell_count > kCellBudget) continue;
         // Per pair and for the whole block (the bounding hulls): how far the links move
@@ -404,15 +431,36 @@ void CollisionChecker::measure_self_table_cell(int block, long cell, Scratch& s)
                      link_pose *
                      model_->link(rs.link).shapes[static_cast<std::size_t>(rs.shape)].origin);
   };
+  // A swept link's shapes are their sweeps, at the link's pose (swept_links.cpp).
+  const SweptLink* swept = table.swept.get();
+  const auto sweep_of = [&](int shape) -> const detail::SweptShape* {
+    const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
+    return swept == nullptr || rs.link != swept->link
+               ? nullptr
+               : &swept->shapes[static_cast<std::size_t>(rs.shape)];
+  };
+  const auto placed = [&](int shape, const Shape& unswept) {
+    const detail::SweptShape* w = sweep_of(shape);
+    return w == nullptr ? std::pair<const Shape*, Eigen::Isometry3d>(&unswept, pose_of(shape))
+                        : std::pair<const Shape*, Eigen::Isometry3d>(
+                              &w->shape, poses[static_cast<std::size_t>(swept->link)]);
+  };
   double lo = kCap, up = kInfinity;
   double floor = -kInfinity;  // from the bounding hulls: no pair is nearer
   const int bound_a = link_balls_[static_cast<std::size_t>(b.link_a)].bound;
   const int bound_b = link_balls_[static_cast<std::size_t>(b.link_b)].bound;
   if (bound_a >= 0 && bound_b >= 0 && b.end - b.begin > 1) {
     const double reach = table.block_reach;
+    const auto bound_placed = [&](int bound) {
+      return sweep_of(bound) == nullptr
+                 ? placed(bound, bounding_shape(bound))
+                 : std::pair<const Shape*, Eigen::Isometry3d>(
+                       &swept->bound->shape, poses[static_cast<std::size_t>(swept->link)]);
+    };
+    const auto [hull_a, pose_a] = bound_placed(bound_a);
+    const auto [hull_b, pose_b] = bound_placed(bound_b);
     const SignedDistanceResult r =
-        signed_distance_below(bounding_shape(bound_a), pose_of(bound_a), bounding_shape(bound_b),
-                              pose_of(bound_b), kCap + reach);
+        signed_distance_below(*hull_a, pose_a, *hull_b, pose_b, kCap + reach);
     if (r.status == Status::kAboveCutoff || r.status == Status::kConverged) {
       floor = r.signed_distance - reach;
     }
@@ -425,25 +473,37 @@ void CollisionChecker::measure_self_table_cell(int block, long cell, Scratch& s)
     for (const int l : {la, lb}) {
       for (int sh = shape_begin_[static_cast<std::size_t>(l)];
            sh < shape_begin_[static_cast<std::size_t>(l) + 1]; ++sh) {
+        const detail::SweptShape* w = sweep_of(sh);
         s.table_centers[static_cast<std::size_t>(sh)] =
-            poses[static_cast<std::size_t>(l)] * shapes_[static_cast<std::size_t>(sh)].center;
+            poses[static_cast<std::size_t>(l)] *
+            (w == nullptr ? shapes_[static_cast<std::size_t>(sh)].center : w->center);
       }
     }
+    const auto radius = [&](int shape) {
+      const detail::SweptShape* w = sweep_of(shape);
+      return w == nullptr ? shapes_[static_cast<std::size_t>(shape)].radius : w->radius;
+    };
     for (int p = b.begin; p < b.end; ++p) {
       const SelfPair& pair = self_pairs_[static_cast<std::size_t>(p)];
       const double reach = table.pair_reach[static_cast<std::size_t>(p - b.begin)];
       const double gap = (s.table_centers[static_cast<std::size_t>(pair.a)] -
                           s.table_centers[static_cast<std::size_t>(pair.b)])
                              .norm() -
-                         shapes_[static_cast<std::size_t>(pair.a)].radius -
-                         shapes_[static_cast<std::size_t>(pair.b)].radius;
+                         radius(pair.a) - radius(pair.b);
       if (gap - reach >= lo) continue;
-      const SignedDistanceResult r = signed_distance_below(
-          shape_of(pair.a), pose_of(pair.a), shape_of(pair.b), pose_of(pair.b), lo + reach);
+      const auto [shape_a, pose_a] = placed(pair.a, shape_of(pair.a));
+      const auto [shape_b, pose_b] = placed(pair.b, shape_of(pair.b));
+      if (swept != nullptr && gap <= 0.0 && intersect(*shape_a, pose_a, *shape_b, pose_b)) {
+        lo = std::min(lo, gap - reach);
+        continue;
+      }
+      const SignedDistanceResult r =
+          signed_distance_below(*shape_a, pose_a, *shape_b, pose_b, lo + reach);
       if (r.status == Status::kAboveCutoff) continue;  // at least lo everywhere in the cell
       if (r.status == Status::kConverged) {
         lo = std::min(lo, r.signed_distance - reach);
-        up = std::min(up, r.signed_distance + reach);
+        // A sweep bounds from below only.
+        if (swept == nullptr) up = std::min(up, r.signed_distance + reach);
       } else {
         lo = std::min(lo, gap - reach);  // nothing proven by the query: the balls' gap bounds it
       }

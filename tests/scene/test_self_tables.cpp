@@ -3,7 +3,9 @@
 // over every shape pair, by signed_distance, lies within the cell's bounds; along a motion the
 // distance never falls below the bound of the cells the motion crosses. And the verdicts the
 // tables decide are those of the exact tests alone (is_valid against is_valid_at, which uses
-// no table), on random and near-contact states. The own arm always; the MotionBenchMaker Panda
+// no table), on random and near-contact states. Tables of links moved by three values sweep
+// one link about a joint (swept_links.cpp): their bounds are checked the same way, at random
+// values of the swept joint. The own arm always; the MotionBenchMaker Panda
 // and UR5 (decomposed meshes) when ../shared is present.
 #include <gtest/gtest.h>
 
@@ -41,6 +43,11 @@ struct SelfTableTestAccess {
     const long cell = table == nullptr ? -1 : table->cell(q.data(), false);
     if (cell >= 0) c.measure_self_table_cell(block, cell, c.scratch());
     return c.self_block_bounds(block, q.data(), lower, upper);
+  }
+  // True when block's table sweeps one link (its links are moved by three values).
+  static bool swept(const CollisionChecker& c, int block) {
+    const auto* table = c.set_up_self_tables()[static_cast<std::size_t>(block)];
+    return table != nullptr && table->swept != nullptr;
   }
   // True once the checker's tables are set up (lever arms built, cells allocated).
   static bool set_up(const CollisionChecker& c) { return !c.self_tables_->per_block.empty(); }
@@ -105,7 +112,7 @@ double brute_force(const RobotModel& model, int a, int b, const Eigen::VectorXd&
 }
 
 struct Counts {
-  int blocks_with_tables = 0;
+  int blocks_with_tables = 0, swept_tables = 0;
   long points = 0, decided_apart = 0, decided_overlap = 0, segments = 0, partial_walks = 0;
 };
 
@@ -118,6 +125,7 @@ void check_bounds(const CollisionChecker& checker, int cells_per_block, Counts* 
     const auto* grid = SelfTableTestAccess::grid(checker, k);
     if (grid == nullptr) continue;
     ++counts->blocks_with_tables;
+    counts->swept_tables += SelfTableTestAccess::swept(checker, k);
     const auto [a, b] = SelfTableTestAccess::links(checker, k);
     SCOPED_TRACE(model.link(a).name + " / " + model.link(b).name);
     for (int n = 0; n < cells_per_block; ++n) {
@@ -210,11 +218,11 @@ void check_verdicts(const CollisionChecker& checker, int states) {
 
 void report(const std::string& id, const Counts& c) {
   std::printf(
-      "[ %-8s ] %d blocks with tables: %ld points within their cell's bounds (%ld proven apart, "
-      "%ld proven overlapping), %ld motions above their cells' bound, %ld walks stopped "
-      "inside\n",
-      id.c_str(), c.blocks_with_tables, c.points, c.decided_apart, c.decided_overlap, c.segments,
-      c.partial_walks);
+      "[ %-8s ] %d blocks with tables (%d sweeping a link): %ld points within their cell's bounds "
+      "(%ld proven apart, %ld proven overlapping), %ld motions above their cells' bound, %ld "
+      "walks stopped inside\n",
+      id.c_str(), c.blocks_with_tables, c.swept_tables, c.points, c.decided_apart,
+      c.decided_overlap, c.segments, c.partial_walks);
 }
 
 // A tiny ball on a 1 m arm swung about z towards a tiny ball fixed 3.5 mm ahead of it: near
@@ -289,6 +297,7 @@ TEST(SelfTables, OwnArmBoundsHoldAgainstBruteForce) {
   check_bounds(checker, test::sample_count(300), &counts);
   report("own arm", counts);
   EXPECT_GT(counts.blocks_with_tables, 0);
+  EXPECT_GT(counts.swept_tables, 0);  // e.g. the first link against the fourth
   EXPECT_GT(counts.decided_apart, 0);
   EXPECT_GT(counts.segments, 0);
 }
@@ -305,6 +314,11 @@ TEST(SelfTables, MbmRobotsBoundsHoldAgainstBruteForce) {
     check_bounds(checker, test::sample_count(robot.id == "ur5" ? 40 : 200), &counts);
     report(robot.id, counts);
     EXPECT_GT(counts.blocks_with_tables, 0);
+    // The UR5's forearm against its wrist's last link and the gripper's links: three values
+    // (the wrist's joints) move them, one of them swept.
+    if (robot.id == "ur5") {
+      EXPECT_GE(counts.swept_tables, 10);
+    }
     EXPECT_GT(counts.decided_apart, 0);
   }
 }

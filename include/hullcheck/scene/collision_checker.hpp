@@ -413,10 +413,11 @@ class CollisionChecker {
     const SelfCluster& c = self_clusters_[static_cast<std::size_t>(cluster)];
     return c.end - c.begin > kGroupSize;
   }
-  // Marks (s.meets_other = mark) the shapes of link ball `link_ball` meeting `other` at its
-  // pose; true when any does.
-  bool mark_pieces_meeting(int link_ball, const Shape& other, const Eigen::Isometry3d& other_pose,
-                           std::uint64_t mark, Scratch& s) const;
+  // Marks (s.meets_other = mark) the shapes of link ball `link_ball` meeting `other` (link ball
+  // `other_ball`'s hull) at its pose; true when any does.
+  bool mark_pieces_meeting(int link_ball, int other_ball, const Shape& other,
+                           const Eigen::Isometry3d& other_pose, std::uint64_t mark,
+                           Scratch& s) const;
   void place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const;
   const Eigen::Isometry3d& shape_pose(int shape, Scratch& s) const;
   /// Centre (model frame) of robot shape `shape`'s ball at the current query's poses.
@@ -488,12 +489,25 @@ class CollisionChecker {
   // copies (they depend only on what copies share).
   std::shared_ptr<MotionLevers> motion_levers_;
   // Distance tables of self blocks (self_block_tables.cpp): for a block whose links are moved
-  // relative to each other by one or two revolute values, a grid over those values holding, per
-  // cell, bounds on the links' signed distance everywhere in the cell, measured by
+  // relative to each other by one or two revolute values (three: one link swept about a joint,
+  // swept_links.cpp), a grid over those values holding, per cell, bounds on the links' signed
+  // distance everywhere in the cell, measured by
   // measure_self_tables. They depend only on the model (and its padding): shared by every
   // checker of the same model (found at construction); copies share them.
   struct SelfTable;
   struct SelfTables;
+  struct SweptLink;
+  /// The joint next to `link_ball`'s link on the way to `other_ball`'s (swept_links.cpp): -1
+  /// unless exactly `drivers` values, each moving one revolute joint there, move the two
+  /// relative to each other.
+  int sweep_joint(int link_ball, int other_ball, int drivers) const;
+  /// `joint`'s axis line (a point and unit direction) in `link_ball`'s link frame.
+  void sweep_axis(int link_ball, int joint, Eigen::Vector3d* origin, Eigen::Vector3d* axis) const;
+  /// m^3: how much a coarse sweep of `link_ball`'s link about `joint` adds to its shapes' hulls.
+  double sweep_growth(int link_ball, int joint) const;
+  /// `link_ball`'s link swept through a turn about `joint` (sweep_joint's); null when a hull
+  /// cannot be built.
+  std::unique_ptr<SweptLink> sweep_link(int link_ball, int joint) const;
   struct ModelSelfTables;
   std::shared_ptr<SelfTables> self_tables_;
   /// The tables of the model (and padding revision) from a registry, made when absent.
