@@ -7,11 +7,11 @@
 //
 // Why identical. The block poses differ from the scalar ones by rounding (below 1e-14 m on the
 // robots tested, test RobotFk.*), far below kSlack. A block is skipped when volumes containing
-// its shapes (link balls, covering spheres) are clear by more than kSlack, or when its table
-// proves the links apart by more than kTableSlack: the shapes are then apart at the scalar poses
-// by more than the queries' tolerance, and is_valid's tests find no overlap in the block. A lane
-// is invalid without exact tests when a ball inside a shape reaches more than kSlack into a box
-// obstacle (the box itself, no margin), or when a self block's table proves its links
+// its shapes (link balls, shape balls, covering spheres) are clear by more than kSlack, or when its
+// table proves the links apart by more than kTableSlack: the shapes are then apart at the scalar
+// poses by more than the queries' tolerance, and is_valid's tests find no overlap in the block. A
+// lane is invalid without exact tests when a ball inside a shape reaches more than kSlack into a
+// box obstacle (the box itself, no margin), or when a self block's table proves its links
 // overlapping by more than kTableSlack: the shapes overlap by more than the tolerance, and
 // is_valid finds an overlap too. Everything else runs exactly as is_valid runs it.
 #include <algorithm>
@@ -52,6 +52,25 @@ const double* CollisionChecker::place_cover(int begin, int end, Scratch& s) cons
   }
   return s.cover_world.data() +
          static_cast<std::size_t>(cover_begin_[static_cast<std::size_t>(begin)]) * 4 * kLanes;
+}
+
+std::uint8_t CollisionChecker::shape_clear_of_box(int shape, std::size_t obstacle, double slack,
+                                                  std::uint8_t needed, Scratch& s) const {
+  const double* box = box_values_.data() + obstacle * detail::kBoxValues;
+  const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
+  double ball[4 * kLanes];
+  place_sphere(s.pose_block, rs.link,
+               Eigen::Vector4d(rs.center.x(), rs.center.y(), rs.center.z(), rs.radius), ball);
+  std::uint8_t clear = 0;
+  detail::spheres_clear_of_boxes(ball, 1, box, 1, slack, &clear);
+  if ((needed & ~clear) == 0) return clear;
+  const double* spheres = place_cover(shape, shape + 1, s);
+  const std::size_t n = cover_spheres(shape, shape + 1);
+  s.sphere_box_clear.resize(n);
+  detail::spheres_clear_of_boxes(spheres, n, box, 1, slack, s.sphere_box_clear.data());
+  std::uint8_t covered = 0xff;
+  for (std::size_t i = 0; i < n; ++i) covered &= s.sphere_box_clear[i];
+  return clear | covered;
 }
 
 CollisionChecker::LinkCover CollisionChecker::link_cover(int link_ball) const {
@@ -129,8 +148,8 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
   const auto lanes_in_use = static_cast<std::uint8_t>((1u << count) - 1u);
   for (int k = 0; k < kLanes; ++k) s.undecided[k].clear();
   std::uint8_t colliding = 0;  // lanes proven in collision by an inner ball
-  // Environment blocks: every link of the block's group clear of the obstacle's box, else every
-  // covering sphere of its shapes.
+  // Environment blocks: every link of the block's group clear of the obstacle's box, else each
+  // of its shapes by its ball or all its covering spheres.
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     const EnvironmentBlock& block = blocks_[b];
     const auto o = static_cast<std::size_t>(block.obstacle);
@@ -144,12 +163,8 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
     std::uint8_t spheres_clear = 0xff;
     for (int p = block.begin; p < block.end && (spheres_clear & ~clear & lanes_in_use); ++p) {
       const int shape = environment_pairs_[static_cast<std::size_t>(p)].shape;
-      const double* spheres = place_cover(shape, shape + 1, s);
-      const std::size_t n = cover_spheres(shape, shape + 1);
-      s.sphere_box_clear.resize(n);
-      detail::spheres_clear_of_boxes(spheres, n, box_values_.data() + o * detail::kBoxValues, 1,
-                                     kSlack, s.sphere_box_clear.data());
-      for (std::size_t i = 0; i < n; ++i) spheres_clear &= s.sphere_box_clear[i];
+      spheres_clear &= shape_clear_of_box(
+          shape, o, kSlack, static_cast<std::uint8_t>(spheres_clear & ~clear & lanes_in_use), s);
     }
     const std::uint8_t open = static_cast<std::uint8_t>(~(clear | spheres_clear) & lanes_in_use);
     if (open != 0 && exact_box_[o]) {

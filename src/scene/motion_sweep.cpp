@@ -68,18 +68,13 @@ std::uint8_t CollisionChecker::sweep_environment(const Eigen::Ref<const Eigen::V
         const auto ball = static_cast<std::size_t>(group_balls_[static_cast<std::size_t>(i)]);
         clear &= s.ball_box_clear[ball * obstacles + o];
       }
-      // The block's shapes: their covering spheres, each with its own rate.
+      // The block's shapes: their balls or covering spheres, each with its own rate.
       for (int p = block.begin; p < block.end && (clear_all & ~clear) != 0; ++p) {
         const int shape = environment_pairs_[static_cast<std::size_t>(p)].shape;
         const double slack =
             h * (levers.shape_levers.row(shape).dot(abs_dq) + extra) + min_clearance + kSlack;
-        const double* spheres = place_cover(shape, shape + 1, s);
-        const std::size_t count = cover_spheres(shape, shape + 1);
-        s.sphere_box_clear.resize(count);
-        detail::spheres_clear_of_boxes(spheres, count, box_values_.data() + o * detail::kBoxValues,
-                                       1, slack, s.sphere_box_clear.data());
-        std::uint8_t shape_clear = 0xff;
-        for (std::size_t i = 0; i < count; ++i) shape_clear &= s.sphere_box_clear[i];
+        const std::uint8_t shape_clear =
+            shape_clear_of_box(shape, o, slack, static_cast<std::uint8_t>(clear_all & ~clear), s);
         if (shape_clear != 0xff && exact_box_[o]) {
           double inner[4 * kLanes];
           detail::place_spheres(

@@ -360,6 +360,11 @@ class CollisionChecker {
   /// The covering spheres of robot shapes [begin, end) at the block's poses, placed on first
   /// use in the block: rows of kPoseBlockLanes (x, y, z, radius per sphere), consecutive.
   const double* place_cover(int begin, int end, Scratch& s) const;
+  /// The block's lanes in which robot shape `shape` is proven clear of obstacle `obstacle`'s
+  /// box by more than `slack` (m): by the shape's ball, and where that leaves lanes of `needed`,
+  /// by its covering spheres (placed then).
+  std::uint8_t shape_clear_of_box(int shape, std::size_t obstacle, double slack,
+                                  std::uint8_t needed, Scratch& s) const;
   /// Throws InputError unless `configurations` has variable_count() rows and every column is a
   /// configuration of the model (naming `who` and the column); std::logic_error after a padding
   /// change.
