@@ -158,7 +158,13 @@ double CollisionChecker::sweep_growth(int link_ball, int joint_index) const {
   const int x = link_balls_[static_cast<std::size_t>(link_ball)].link;
   for (const CollisionShape& cs : model_->link(x).shapes) {
     std::vector<Eigen::Vector3d> points;
-    outer_points(cs.shape, cs.origin, &points);
+    const double radius = outer_points(cs.shape, cs.origin, &points);
+    // Round parts as the octahedra their balls hold (a ball's centre alone has no volume).
+    for (std::size_t i = 0, n = points.size(); i < n && radius > 0.0; ++i) {
+      for (int d = 0; d < 6; ++d) {
+        points.push_back(points[i] + (d < 3 ? radius : -radius) * Eigen::Vector3d::Unit(d % 3));
+      }
+    }
     growth += std::max(0.0, convex_hull_volume(turned_copies(points, origin, axis, 8)) -
                                 convex_hull_volume(points));
   }

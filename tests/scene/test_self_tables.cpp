@@ -289,6 +289,62 @@ TEST(SelfTables, PendulumBoundsAreTightAndHold) {
   }
 }
 
+// Three joints between a small ball on the base and a ball on the last link's joint axis:
+// that link, turned about its own joint, fills its ball again, so the table sweeps it (not the
+// base, whose ball the first joint would turn into a ring) and its bounds over the first two
+// values are as tight as a two-value table's: within twice a cell's reach of the distance.
+const char* const kWrist = R"(<robot name="wrist">
+  <link name="base"><collision><origin xyz="0.62 0 0"/>
+    <geometry><sphere radius="0.01"/></geometry></collision></link>
+  <link name="upper"/>
+  <link name="lower"/>
+  <link name="hand"><collision><origin xyz="0.05 0 0"/>
+    <geometry><sphere radius="0.02"/></geometry></collision></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="upper"/>
+    <axis xyz="0 0 1"/><limit lower="-3.14159" upper="3.14159" effort="1" velocity="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="upper"/><child link="lower"/>
+    <origin xyz="0.3 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-3.14159" upper="3.14159" effort="1" velocity="1"/></joint>
+  <joint name="j3" type="revolute"><parent link="lower"/><child link="hand"/>
+    <origin xyz="0.25 0 0"/><axis xyz="1 0 0"/>
+    <limit lower="-3.14159" upper="3.14159" effort="1" velocity="1"/></joint>
+</robot>)";
+
+TEST(SelfTables, SweptLinkOfRevolutionIsTight) {
+  const auto model = std::make_shared<const RobotModel>(
+      RobotModel::from_urdf_string(kWrist, ".", {}, "wrist.urdf"));
+  const CollisionChecker checker(model, AllowedCollisionMatrix(4));
+  ASSERT_EQ(SelfTableTestAccess::blocks(checker), 1);
+  ASSERT_TRUE(SelfTableTestAccess::swept(checker, 0));
+  const auto* grid = SelfTableTestAccess::grid(checker, 0);
+  ASSERT_EQ(grid->dims, 2);
+  // The hand ball's centre turns with j1 and j2 only: its gap to the base ball in closed form.
+  const auto gap = [](const Eigen::VectorXd& q) {
+    const Eigen::Vector2d p = 0.3 * Eigen::Vector2d(std::cos(q[0]), std::sin(q[0])) +
+                              0.3 * Eigen::Vector2d(std::cos(q[0] + q[1]), std::sin(q[0] + q[1]));
+    return (p - Eigen::Vector2d(0.62, 0.0)).norm() - 0.03;
+  };
+  // A cell's reach: its half-widths times the lever arms of the hand ball's farthest point
+  // about j1 (0.6 + 0.02 m) and j2 (0.3 + 0.02 m).
+  const double reach = grid->half_width(0) * 0.62 + grid->half_width(1) * 0.32;
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> j1(-0.3, 0.3), j2(-0.8, 0.8), j3(-3.1, 3.1);
+  int near = 0;
+  for (int n = 0; n < 4000; ++n) {
+    const Eigen::Vector3d q(j1(rng), j2(rng), j3(rng));
+    double lower = 0.0, upper = 0.0;
+    ASSERT_TRUE(SelfTableTestAccess::bounds(checker, 0, q, &lower, &upper));
+    const double d = gap(q);
+    ASSERT_LE(lower, d + kTol) << q.transpose();
+    EXPECT_EQ(upper, std::numeric_limits<double>::infinity());  // a sweep proves no contact
+    if (lower < 0.0015) {  // below the cap (2 mm) the bound is measured, not capped
+      ++near;
+      ASSERT_LT(d - lower, 2.0 * reach + 1e-6) << q.transpose();
+    }
+  }
+  EXPECT_GT(near, 100);
+}
+
 TEST(SelfTables, OwnArmBoundsHoldAgainstBruteForce) {
   const test::RobotFile arm = test::own_arm();
   const auto model = test::cached_model(arm.urdf);
