@@ -67,6 +67,9 @@ struct CollisionChecker::Scratch {
   std::vector<double> ball_centers;            // link balls as sphere rows (x, y, z, radius)
   std::vector<std::uint8_t> ball_box_clear;    // per link ball and obstacle: lanes clear
   std::vector<std::uint8_t> sphere_box_clear;  // per covering sphere of a shape
+  // The motion sweep: a shape group's shapes' balls, each grown by its margin (link frame,
+  // x, y, z, radius), and at the block's poses (rows of kPoseBlockLanes).
+  std::vector<double> group_shape_spheres, group_shape_balls;
   std::vector<std::uint8_t> self_balls_apart;  // per self block: lanes with its link balls apart
   // Covering spheres at the block's poses (per cover_ entry, 4 rows of kPoseBlockLanes);
   // shape i's are current when cover_placed[i] == block_stamp.

@@ -60,6 +60,8 @@ std::uint8_t CollisionChecker::sweep_environment(const Eigen::Ref<const Eigen::V
                                      box_values_.data(), obstacles, group_slack,
                                      s.ball_box_clear.data() + ball * obstacles);
     }
+    const ShapeGroup& group = groups_[g];
+    bool shape_balls = false;  // the group's shapes' balls placed
     for (int b = first; b < last && clear_all != 0; ++b) {
       const EnvironmentBlock& block = blocks_[static_cast<std::size_t>(b)];
       const auto o = static_cast<std::size_t>(block.obstacle);
@@ -68,13 +70,28 @@ std::uint8_t CollisionChecker::sweep_environment(const Eigen::Ref<const Eigen::V
         const auto ball = static_cast<std::size_t>(group_balls_[static_cast<std::size_t>(i)]);
         clear &= s.ball_box_clear[ball * obstacles + o];
       }
-      // The block's shapes: their balls or covering spheres, each with its own rate.
+      if ((clear_all & ~clear) == 0) continue;
+      // The block's shapes: their balls, each grown by its own rate's margin, all in one test;
+      // then the covering spheres of those whose ball leaves lanes.
+      if (!shape_balls) {
+        place_group_shape_balls(group, h, abs_dq, extra, min_clearance, s);
+        shape_balls = true;
+      }
+      const auto shapes = static_cast<std::size_t>(group.end - group.begin);
+      s.sphere_box_clear.resize(shapes);
+      detail::spheres_clear_of_boxes(s.group_shape_balls.data(), shapes,
+                                     box_values_.data() + o * detail::kBoxValues, 1, kSlack,
+                                     s.sphere_box_clear.data());
       for (int p = block.begin; p < block.end && (clear_all & ~clear) != 0; ++p) {
         const int shape = environment_pairs_[static_cast<std::size_t>(p)].shape;
-        const double slack =
-            h * (levers.shape_levers.row(shape).dot(abs_dq) + extra) + min_clearance + kSlack;
-        const std::uint8_t shape_clear =
-            shape_clear_of_box(shape, o, slack, static_cast<std::uint8_t>(clear_all & ~clear), s);
+        std::uint8_t shape_clear =
+            s.sphere_box_clear[static_cast<std::size_t>(shape - group.begin)];
+        if ((clear_all & ~clear & ~shape_clear) != 0) {
+          const double slack =
+              h * (levers.shape_levers.row(shape).dot(abs_dq) + extra) + min_clearance + kSlack;
+          shape_clear =
+              shape_clear_of_box(shape, o, slack, static_cast<std::uint8_t>(clear_all & ~clear), s);
+        }
         if (shape_clear != 0xff && exact_box_[o]) {
           double inner[4 * kLanes];
           detail::place_spheres(
@@ -88,6 +105,34 @@ std::uint8_t CollisionChecker::sweep_environment(const Eigen::Ref<const Eigen::V
     }
   }
   return clear_all;
+}
+
+void CollisionChecker::place_group_shape_balls(const ShapeGroup& group, double h,
+                                               const Eigen::VectorXd& abs_dq, double extra,
+                                               double min_clearance, Scratch& s) const {
+  const MotionLevers& levers = motion_levers();
+  const auto shapes = static_cast<std::size_t>(group.end - group.begin);
+  s.group_shape_spheres.resize(4 * shapes);
+  s.group_shape_balls.resize(4 * kLanes * shapes);
+  for (std::size_t i = 0; i < shapes; ++i) {
+    const int shape = group.begin + static_cast<int>(i);
+    const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
+    double* sphere = s.group_shape_spheres.data() + 4 * i;
+    sphere[0] = rs.center.x();
+    sphere[1] = rs.center.y();
+    sphere[2] = rs.center.z();
+    sphere[3] =
+        rs.radius + h * (levers.shape_levers.row(shape).dot(abs_dq) + extra) + min_clearance;
+  }
+  // One placement per run of shapes on the same link.
+  for (std::size_t i = 0; i < shapes;) {
+    const int link = shapes_[static_cast<std::size_t>(group.begin) + i].link;
+    std::size_t j = i + 1;
+    while (j < shapes && shapes_[static_cast<std::size_t>(group.begin) + j].link == link) ++j;
+    detail::place_spheres(s.pose_block.entry(link, 0), s.group_shape_spheres.data() + 4 * i, j - i,
+                          s.group_shape_balls.data() + 4 * kLanes * i);
+    i = j;
+  }
 }
 
 std::uint8_t CollisionChecker::sweep_self(const Eigen::Ref<const Eigen::VectorXd>& q0,

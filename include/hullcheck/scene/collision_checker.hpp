@@ -399,6 +399,10 @@ class CollisionChecker {
                                  const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_dq,
                                  double extra, double min_clearance, std::uint8_t* colliding,
                                  Scratch& s) const;
+  /// sweep_environment's shape balls: `group`'s shapes' balls, each grown by h times its rate
+  /// (plus `extra`) and min_clearance, at the block's poses into s.group_shape_balls.
+  void place_group_shape_balls(const ShapeGroup& group, double h, const Eigen::VectorXd& abs_dq,
+                               double extra, double min_clearance, Scratch& s) const;
   /// The same for the self blocks, at the block sweep_environment placed.
   std::uint8_t sweep_self(const Eigen::Ref<const Eigen::VectorXd>& q0, const Eigen::VectorXd& dq,
                           const Eigen::VectorXd& abs_dq, double extra, double min_clearance,
