@@ -70,6 +70,8 @@ struct CollisionChecker::Scratch {
   // The motion sweep: a shape group's shapes' balls, each grown by its margin (link frame,
   // x, y, z, radius), and at the block's poses (rows of kPoseBlockLanes).
   std::vector<double> group_shape_spheres, group_shape_balls;
+  // check_motion: a shape group's ball's gaps to its obstacles' boxes (test_environment_group).
+  std::vector<double> group_gaps;
   std::vector<std::uint8_t> self_balls_apart;  // per self block: lanes with its link balls apart
   // Covering spheres at the block's poses (per cover_ entry, 4 rows of kPoseBlockLanes);
   // shape i's are current when cover_placed[i] == block_stamp.

@@ -575,9 +575,14 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_env
     const EnvironmentBlock& block = c.blocks_[static_cast<std::size_t>(b)];
     return c.box_gap(c.boxes_[static_cast<std::size_t>(block.obstacle)], ball_centre, radius);
   };
-  // The smallest gap of the obstacles within the margin (the others are certified).
+  // The smallest gap of the obstacles within the margin (the others are certified); the gaps
+  // kept for the contact test below.
   double lower = std::numeric_limits<double>::infinity();
-  for (int b = first; b < last; ++b) lower = std::min(lower, gap(b));
+  s.group_gaps.resize(static_cast<std::size_t>(last - first));
+  for (int b = first; b < last; ++b) {
+    s.group_gaps[static_cast<std::size_t>(b - first)] = gap(b);
+    lower = std::min(lower, s.group_gaps[static_cast<std::size_t>(b - first)]);
+  }
   if (lower > inflated) return Outcome::kCertified;
   if (!coarse(inflated, radius, item.rate)) {
     // Fine enough to tell the obstacles apart: each block an item of its own (the ones the
@@ -589,7 +594,8 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_env
   // Kept whole, tested for contact only: a box the group's ball reaches (a ball clear of an
   // obstacle's box holds no shape touching it).
   for (int b = first; b < last; ++b) {
-    if (gap(b) <= 0.0 && c.environment_block_collides(b, s)) {
+    if (s.group_gaps[static_cast<std::size_t>(b - first)] <= 0.0 &&
+        c.environment_block_collides(b, s)) {
       out->push_back(item);
       contact_rate = item.rate;
       return Outcome::kContact;
