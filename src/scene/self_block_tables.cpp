@@ -141,12 +141,19 @@ const std::vector<CollisionChecker::SelfTable*>& CollisionChecker::set_up_self_t
     out.per_block.assign(self_blocks_.size(), nullptr);
     const MotionLevers& levers = motion_levers();
     const std::lock_guard<std::mutex> lock(shared.mutex);
-    // Links swept for this set-up, by (link ball, joint): a link is swept about the same
-    // joint for every link beyond it (a forearm against a gripper's links).
+    // Links swept for this set-up and their coarse sweeps' growth, by (link ball, joint): a
+    // link is swept about the same joint for every link beyond it (a forearm against a
+    // gripper's links).
     std::map<std::pair<int, int>, std::shared_ptr<const SweptLink>> sweeps;
+    std::map<std::pair<int, int>, double> growths;
     const auto sweep = [&](int x, int joint) {
       const auto [it, fresh] = sweeps.try_emplace({x, joint});
       if (fresh) it->second = sweep_link(x, joint);
+      return it->second;
+    };
+    const auto growth = [&](int x, int joint) {
+      const auto [it, fresh] = growths.try_emplace({x, joint});
+      if (fresh) it->second = sweep_growth(x, joint);
       return it->second;
     };
     for (std::size_t k = 0; k < self_blocks_.size(); ++k) {
@@ -168,7 +175,7 @@ const std::vector<CollisionChecker::SelfTable*>& CollisionChecker::set_up_self_t
           const int joint_a = sweep_joint(block.link_a, block.link_b, key_count);
           const int joint_b = sweep_joint(block.link_b, block.link_a, key_count);
           if (joint_a < 0 || joint_b < 0) continue;
-          swept = sweep_growth(block.link_a, joint_a) <= sweep_growth(block.link_b, joint_b)
+          swept = growth(block.link_a, joint_a) <= growth(block.link_b, joint_b)
                       ? sweep(block.link_a, joint_a)
                       : sweep(block.link_b, joint_b);
           if (!swept) continue;
