@@ -319,11 +319,14 @@ void bind_scene(py::module_& m) {
            "or finds its first contact (within `resolution` m of travel).")
       .def(
           "measure_self_tables",
-          [](const CollisionChecker& c) {
+          [](const CollisionChecker& c, const py::object& threads) {
+            const int n = thread_count(threads, std::numeric_limits<int>::max());
             py::gil_scoped_release release;
-            c.measure_self_tables();
+            c.measure_self_tables(n);
           },
-          "Measures the self-collision distance tables once per model (faster checks after).")
+          py::arg("threads") = 0,
+          "Measures the self-collision distance tables once per model (faster checks after), "
+          "on `threads` threads (0: one per hardware thread).")
       .def(
           "checked_link_pairs",
           [](const CollisionChecker& c) {

@@ -43,11 +43,15 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <exception>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/core/queries.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
 #include <limits>
 #include <map>
 #include <mutex>
+#include <string>
+#include <thread>
 
 #include "collision_checker_internals.hpp"
 
@@ -213,17 +217,56 @@ const std::vector<CollisionChecker::SelfTable*>& CollisionChecker::set_up_self_t
   return out.per_block;
 }
 
-void CollisionChecker::measure_self_tables() const {
+void CollisionChecker::measure_self_tables(int threads) const {
   require_current_padding();
-  Scratch& s = scratch();
+  if (threads < 0) {
+    throw InputError(
+        "CollisionChecker::measure_self_tables: threads must be >= 0 (0: every "
+        "hardware thread), got " +
+        std::to_string(threads));
+  }
   const std::vector<SelfTable*>& tables = set_up_self_tables();
+  // Every table's cells, numbered one after the other (table k's from first[k]), taken in
+  // chunks by the threads: a cell's value depends only on the cell, so the order is free.
+  std::vector<std::size_t> first(tables.size() + 1, 0);
   for (std::size_t k = 0; k < tables.size(); ++k) {
-    if (tables[k] == nullptr) continue;
-    for (std::size_t cell = 0; cell < tables[k]->cell_count; ++cell) {
-      measure_self_table_cell(static_cast<int>(k), static_cast<long>(cell), s);
+    first[k + 1] = first[k] + (tables[k] == nullptr ? 0 : tables[k]->cell_count);
+  }
+  const std::size_t total = first.back();
+  constexpr std::size_t kChunk = 1024;
+  std::atomic<std::size_t> next{0};
+  std::vector<std::exception_ptr> errors;
+  const auto work = [&](std::exception_ptr* error) {
+    try {
+      Scratch& s = scratch();
+      for (std::size_t begin = next.fetch_add(kChunk); begin < total;
+           begin = next.fetch_add(kChunk)) {
+        auto k = static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), begin) -
+                                          first.begin() - 1);
+        for (std::size_t i = begin; i < std::min(total, begin + kChunk); ++i) {
+          while (i >= first[k + 1]) ++k;
+          measure_self_table_cell(static_cast<int>(k), static_cast<long>(i - first[k]), s);
+        }
+      }
+    } catch (...) {
+      *error = std::current_exception();
+      next.store(total);  // the others stop at their next chunk
     }
-    SelfTable& table = *tables[k];
-    std::call_once(table.summary_once, [&table] { table.summarize(); });
+  };
+  const std::size_t wanted = threads > 0
+                                 ? static_cast<std::size_t>(threads)
+                                 : std::max<std::size_t>(1, std::thread::hardware_concurrency());
+  const std::size_t count = std::min(wanted, total / kChunk + 1);
+  errors.resize(count);
+  std::vector<std::thread> workers;
+  for (std::size_t t = 1; t < count; ++t) workers.emplace_back(work, &errors[t]);
+  work(&errors[0]);
+  for (std::thread& w : workers) w.join();
+  for (const std::exception_ptr& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+  for (SelfTable* table : tables) {
+    if (table != nullptr) std::call_once(table->summary_once, [table] { table->summarize(); });
   }
 }
 

@@ -131,6 +131,21 @@ def test_bad_thread_counts(checker):
         checker.model.forward_kinematics(np.zeros((4, 8)), threads=2.5)
 
 
+def test_measure_self_tables_threads(arm_files):
+    # A model object of its own (tables are shared per model object): measured on two
+    # threads, the verdicts are those of an unmeasured checker of another model object.
+    def make():
+        model = hc.RobotModel.from_urdf(arm_files["urdf"])
+        return hc.CollisionChecker(model, srdf=arm_files["srdf"], scene=arm_files["scene"])
+
+    measured, plain = make(), make()
+    with pytest.raises(hc.InputError, match="threads: expected >= 0"):
+        measured.measure_self_tables(threads=-1)
+    measured.measure_self_tables(threads=2)
+    q = random_configurations(measured.model, 2000, 3)
+    np.testing.assert_array_equal(measured.is_valid(q), plain.is_valid(q))
+
+
 def test_scene_errors_name_the_file(arm, tmp_path):
     bad = tmp_path / "scene.yaml"
     bad.write_text("world:\n  collision_objects: [ {id: box, primitives: [{type: box, "

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <hullcheck/core/errors.hpp>
 #include <hullcheck/core/queries.hpp>
 #include <hullcheck/robot.hpp>
 #include <hullcheck/scene/collision_checker.hpp>
@@ -48,6 +50,15 @@ struct SelfTableTestAccess {
   static bool swept(const CollisionChecker& c, int block) {
     const auto* table = c.set_up_self_tables()[static_cast<std::size_t>(block)];
     return table != nullptr && table->swept != nullptr;
+  }
+  // Every cell's stored word (bounds packed; kUnmeasured where not measured), block's table.
+  static std::vector<std::uint64_t> cells(const CollisionChecker& c, int block) {
+    const auto* table = c.set_up_self_tables()[static_cast<std::size_t>(block)];
+    std::vector<std::uint64_t> out;
+    for (std::size_t i = 0; table != nullptr && i < table->cell_count; ++i) {
+      out.push_back(table->bounds[i].load());
+    }
+    return out;
   }
   // True once the checker's tables are set up (lever arms built, cells allocated).
   static bool set_up(const CollisionChecker& c) { return !c.self_tables_->per_block.empty(); }
@@ -467,6 +478,27 @@ TEST(SelfTables, NothingBuiltUntilMeasured) {
   EXPECT_TRUE(SelfTableTestAccess::set_up(measuring));
   before.is_valid(test::random_configuration(*model, rng));
   EXPECT_TRUE(SelfTableTestAccess::set_up(before));
+}
+
+TEST(SelfTables, SameTablesOnAnyNumberOfThreads) {
+  // Two model objects (their tables are not shared), measured on one and on three threads:
+  // every cell of every table holds the same bounds, and none is left unmeasured.
+  const test::RobotFile arm = test::own_arm();
+  const auto one = std::make_shared<const RobotModel>(RobotModel::from_urdf_file(arm.urdf));
+  const auto three = std::make_shared<const RobotModel>(RobotModel::from_urdf_file(arm.urdf));
+  const CollisionChecker a(one, AllowedCollisionMatrix::from_adjacency(*one));
+  const CollisionChecker b(three, AllowedCollisionMatrix::from_adjacency(*three));
+  EXPECT_THROW(a.measure_self_tables(-1), InputError);
+  a.measure_self_tables(1);
+  b.measure_self_tables(3);
+  std::size_t compared = 0;
+  for (int k = 0; k < SelfTableTestAccess::blocks(a); ++k) {
+    const std::vector<std::uint64_t> ca = SelfTableTestAccess::cells(a, k);
+    ASSERT_EQ(ca, SelfTableTestAccess::cells(b, k)) << "block " << k;
+    for (const std::uint64_t word : ca) ASSERT_NE(word, ~std::uint64_t{0});
+    compared += ca.size();
+  }
+  EXPECT_GT(compared, 100000u);
 }
 
 TEST(SelfTables, SharedByCheckersOfOneModel) {

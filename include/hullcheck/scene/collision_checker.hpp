@@ -161,10 +161,12 @@ class CollisionChecker {
   /// (the exact tests run where the bounds decide nothing). The tables depend only on the model
   /// and its padding: every checker of the same model object shares them, so this runs once
   /// per model while one of them lives (later calls return at once). Measured (one core, this
-  /// project's benchmarks): 0.17 s for the MotionBenchMaker Panda, 5.5 s for its UR5 with
-  /// decomposed meshes. Without it no table is used. Thread-safe; it may run while other
-  /// threads query.
-  void measure_self_tables() const;
+  /// project's benchmarks, one thread): 0.17 s for the MotionBenchMaker Panda, 5.5 s for its
+  /// UR5 with decomposed meshes. Without it no table is used. The cells are measured on
+  /// `threads` threads (this one and threads - 1 started for the call and joined before it
+  /// returns; 0: one per hardware thread); the tables are the same whatever the count. Throws
+  /// InputError for threads < 0. Thread-safe; it may run while other threads query.
+  void measure_self_tables(int threads = 0) const;
 
   /// Upper bound, m, on how far any point of any checked robot shape moves relative to any
   /// other checked shape or obstacle along the straight joint-space motion from q0 to q1 (each
