@@ -68,8 +68,10 @@ struct CollisionChecker::Scratch {
   std::vector<std::uint8_t> ball_box_clear;    // per link ball and obstacle: lanes clear
   std::vector<std::uint8_t> sphere_box_clear;  // per covering sphere of a shape
   // The motion sweep: a shape group's shapes' balls, each grown by its margin (link frame,
-  // x, y, z, radius), and at the block's poses (rows of kPoseBlockLanes).
+  // x, y, z, radius), at the block's poses (rows of kPoseBlockLanes), and per shape the lanes
+  // in which its ball is clear of the current obstacle's box.
   std::vector<double> group_shape_spheres, group_shape_balls;
+  std::vector<std::uint8_t> group_shape_clear;
   // check_motion: a shape group's ball's gaps to its obstacles' boxes (test_environment_group).
   std::vector<double> group_gaps;
   std::vector<std::uint8_t> self_balls_apart;  // per self block: lanes with its link balls apart

@@ -56,21 +56,27 @@ const double* CollisionChecker::place_cover(int begin, int end, Scratch& s) cons
 
 std::uint8_t CollisionChecker::shape_clear_of_box(int shape, std::size_t obstacle, double slack,
                                                   std::uint8_t needed, Scratch& s) const {
-  const double* box = box_values_.data() + obstacle * detail::kBoxValues;
   const RobotShape& rs = shapes_[static_cast<std::size_t>(shape)];
   double ball[4 * kLanes];
   place_sphere(s.pose_block, rs.link,
                Eigen::Vector4d(rs.center.x(), rs.center.y(), rs.center.z(), rs.radius), ball);
   std::uint8_t clear = 0;
-  detail::spheres_clear_of_boxes(ball, 1, box, 1, slack, &clear);
+  detail::spheres_clear_of_boxes(ball, 1, box_values_.data() + obstacle * detail::kBoxValues, 1,
+                                 slack, &clear);
   if ((needed & ~clear) == 0) return clear;
+  return clear | cover_clear_of_box(shape, obstacle, slack, s);
+}
+
+std::uint8_t CollisionChecker::cover_clear_of_box(int shape, std::size_t obstacle, double slack,
+                                                  Scratch& s) const {
   const double* spheres = place_cover(shape, shape + 1, s);
   const std::size_t n = cover_spheres(shape, shape + 1);
   s.sphere_box_clear.resize(n);
-  detail::spheres_clear_of_boxes(spheres, n, box, 1, slack, s.sphere_box_clear.data());
+  detail::spheres_clear_of_boxes(spheres, n, box_values_.data() + obstacle * detail::kBoxValues, 1,
+                                 slack, s.sphere_box_clear.data());
   std::uint8_t covered = 0xff;
   for (std::size_t i = 0; i < n; ++i) covered &= s.sphere_box_clear[i];
-  return clear | covered;
+  return covered;
 }
 
 CollisionChecker::LinkCover CollisionChecker::link_cover(int link_ball) const {

@@ -78,19 +78,18 @@ std::uint8_t CollisionChecker::sweep_environment(const Eigen::Ref<const Eigen::V
         shape_balls = true;
       }
       const auto shapes = static_cast<std::size_t>(group.end - group.begin);
-      s.sphere_box_clear.resize(shapes);
+      s.group_shape_clear.resize(shapes);  // its own buffer: the covering spheres' is reused below
       detail::spheres_clear_of_boxes(s.group_shape_balls.data(), shapes,
                                      box_values_.data() + o * detail::kBoxValues, 1, kSlack,
-                                     s.sphere_box_clear.data());
+                                     s.group_shape_clear.data());
       for (int p = block.begin; p < block.end && (clear_all & ~clear) != 0; ++p) {
         const int shape = environment_pairs_[static_cast<std::size_t>(p)].shape;
         std::uint8_t shape_clear =
-            s.sphere_box_clear[static_cast<std::size_t>(shape - group.begin)];
+            s.group_shape_clear[static_cast<std::size_t>(shape - group.begin)];
         if ((clear_all & ~clear & ~shape_clear) != 0) {
           const double slack =
               h * (levers.shape_levers.row(shape).dot(abs_dq) + extra) + min_clearance + kSlack;
-          shape_clear =
-              shape_clear_of_box(shape, o, slack, static_cast<std::uint8_t>(clear_all & ~clear), s);
+          shape_clear |= cover_clear_of_box(shape, o, slack, s);
         }
         if (shape_clear != 0xff && exact_box_[o]) {
           double inner[4 * kLanes];

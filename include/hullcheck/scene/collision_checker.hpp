@@ -369,6 +369,9 @@ class CollisionChecker {
   /// by its covering spheres (placed then).
   std::uint8_t shape_clear_of_box(int shape, std::size_t obstacle, double slack,
                                   std::uint8_t needed, Scratch& s) const;
+  /// The block's lanes in which all of robot shape `shape`'s covering spheres (placed then) are
+  /// clear of obstacle `obstacle`'s box by more than `slack` (m); uses s.sphere_box_clear.
+  std::uint8_t cover_clear_of_box(int shape, std::size_t obstacle, double slack, Scratch& s) const;
   /// Throws InputError unless `configurations` has variable_count() rows and every column is a
   /// configuration of the model (naming `who` and the column); std::logic_error after a padding
   /// change.
