@@ -4,6 +4,7 @@
 //  - FCL 0.7 (oracles/fcl_checker) densely along random motions of the MotionBenchMaker Panda
 //    and UR5 problems: accepted motions free at every sample, the reported contact a state
 //    FCL finds within min_clearance + resolution of touching, the part before it free;
+//  - a two-piece link crossing a box (analytic: which motions cross it);
 //  - bad input.
 #include <gtest/gtest.h>
 
@@ -162,6 +163,81 @@ TEST(MotionCheck, BadInputIsAnError) {
   const MotionCheckResult r = swing.checker->check_motion(swing.q(0), swing.q(1.2), bad);
   EXPECT_EQ(r.verdict, MotionVerdict::kStateBudget);
   EXPECT_FALSE(r.free());
+}
+
+// A link of two pieces sliding along x past a box: a long rod (its ball, radius 0.3 m, reaches
+// the box; the rod itself stays 0.2 m from it) and a small cube at y = 0.25 m that passes
+// through the box. Analytically the cube meets the box while |x - 0.5| < 0.045 (half widths
+// 0.02 + 0.025) and the rod never does. The sweep must keep each piece's ball verdict apart from
+// the other's covering spheres (b891229: the rod's covering spheres, clear, were once read as
+// the cube's ball verdict and the crossing accepted); both orders of the pieces.
+TEST(MotionCheck, TwoPieceLinkCrossingABoxIsRejected) {
+  // The rod a mesh (a hull, so it has covering spheres besides its ball), the cube a primitive.
+  const test::TempDir dir("two_pieces");
+  std::string obj;
+  for (int i = 0; i < 8; ++i) {
+    obj += "v " + std::to_string(i & 1 ? 0.01 : -0.01) + " " +
+           std::to_string(i & 2 ? 0.01 : -0.01) + " " + std::to_string(i & 4 ? 0.3 : -0.3) + "\n";
+  }
+  // The cuboid's faces (vertex bits x = 1, y = 2, z = 4), outward.
+  obj += "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+  dir.write("rod.obj", obj);
+  const std::string rod =
+      R"(<collision><geometry><mesh filename="rod.obj"/></geometry></collision>)";
+  const std::string cube =
+      R"(<collision><origin xyz="0 0.25 0"/><geometry><box size="0.04 0.04 0.04"/></geometry></collision>)";
+  const double contact_half_width = 0.045, box_x = 0.5;
+  for (const bool rod_first : {true, false}) {
+    const std::string urdf = R"(<robot name="slider"><link name="base"/><link name="carriage">)" +
+                             (rod_first ? rod + cube : cube + rod) + R"(</link>
+  <joint name="slide" type="prismatic"><parent link="base"/><child link="carriage"/>
+    <axis xyz="1 0 0"/><limit lower="-1" upper="1.5" effort="1" velocity="1"/></joint>
+</robot>)";
+    const auto model = std::make_shared<const RobotModel>(
+        RobotModel::from_urdf_string(urdf, dir.str(), {}, "slider.urdf"));
+    PlanningScene scene;
+    scene.obstacles.push_back(Obstacle{"block", "block", Shape(Box(0.05, 0.05, 0.05)),
+                                       Eigen::Isometry3d(Eigen::Translation3d(box_x, 0.25, 0.0)),
+                                       "box"});
+    const CollisionChecker checker(
+        model, AllowedCollisionMatrix(static_cast<int>(model->links().size())), scene);
+    const auto q = [](double x) { return Eigen::VectorXd::Constant(1, x); };
+    ASSERT_TRUE(checker.is_valid(q(0.0)));
+    ASSERT_FALSE(checker.is_valid(q(box_x)));
+    std::mt19937 rng(16);
+    std::uniform_real_distribution<double> x(-1.0, 1.5);
+    int crossing = 0, free = 0;
+    for (int i = 0; i < 400; ++i) {
+      const double a = x(rng), b = x(rng);
+      const double lo = std::min(a, b), hi = std::max(a, b);
+      // The motion's distance (in x) from the interval where the cube overlaps the box.
+      const double gap =
+          std::max({0.0, (box_x - contact_half_width) - hi, lo - (box_x + contact_half_width)});
+      for (const bool locate : {true, false}) {
+        MotionCheckOptions options;
+        options.locate_contact = locate;
+        const MotionCheckResult r = checker.check_motion(q(a), q(b), options);
+        const std::string what = std::string(rod_first ? "rod first" : "cube first") +
+                                 (locate ? ", located" : ", yes/no") + ", from " +
+                                 std::to_string(a) + " to " + std::to_string(b);
+        if (gap == 0.0) {
+          ASSERT_FALSE(r.free()) << what;
+          EXPECT_EQ(r.verdict, MotionVerdict::kContact) << what;
+          // The contact reported is a state within min_clearance + resolution of the box.
+          const double at = a + r.contact * (b - a);
+          EXPECT_LE(std::abs(at - box_x),
+                    contact_half_width + options.min_clearance + options.resolution + 1e-9)
+              << what;
+          crossing += locate;
+        } else if (gap > options.min_clearance + options.resolution) {
+          EXPECT_TRUE(r.free()) << what;
+          free += locate;
+        }
+      }
+    }
+    EXPECT_GT(crossing, 50);
+    EXPECT_GT(free, 50);
+  }
 }
 
 // ------------------------------------------------------------------------------------------
