@@ -39,6 +39,15 @@ bool intersect(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
   return detail::intersect_query(a, pose_a, b, pose_b, options);
 }
 
+bool within_distance(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+                     const Eigen::Isometry3d& pose_b, double distance,
+                     const QueryOptions& options) {
+  detail::require_length(distance, "within_distance: distance");
+  detail::require_length(a.margin() + distance, "within_distance: distance plus A's margin");
+  require_rigid(pose_a, pose_b);
+  return detail::within_distance_query(a, pose_a, b, pose_b, distance, options);
+}
+
 DistanceResult distance(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                         const Eigen::Isometry3d& pose_b, const QueryOptions& options) {
   return detail::to_distance_result(

@@ -91,6 +91,10 @@ struct CollisionChecker::Scratch {
   Eigen::VectorXd table_q;
   std::vector<Eigen::Isometry3d> table_poses;
   std::vector<Eigen::Vector3d> table_centers;  // per robot shape: its ball's centre there
+  // Per pair of the block measured: a lower bound of its distance over the cell, and whether
+  // it is only a bound that a query stopped at (not the pair's measured distance).
+  std::vector<double> table_pair_lower;
+  std::vector<char> table_pair_bound_only;
   std::vector<MotionInterval> motion_intervals, motion_intervals_next;
   Eigen::VectorXd motion_q;  // the configuration being evaluated
   // check_motion's probes: a block of configurations along the motion (kPoseBlockLanes
@@ -146,6 +150,13 @@ struct CollisionChecker::SelfTable : JointGrid {
   std::vector<double> pair_reach;
   double block_reach = 0.0;
   std::unique_ptr<std::atomic<std::uint64_t>[]> bounds;  // per cell
+  // Per cell, when the two links have at most 64 shapes together (else null): the shapes of
+  // the block's pairs whose lower bound over the cell is kTableSlack or less, bit i for link
+  // a's i-th shape and bit shapes_a + j for link b's j-th. A pair with an unmarked shape is
+  // apart by more than kTableSlack everywhere in the cell. Stored before the cell's bounds
+  // (release), read after them (acquire).
+  std::unique_ptr<std::atomic<std::uint64_t>[]> near_shapes;
+  int shapes_a = 0;  // link a's shape count
   // Once every cell is measured (measure_self_tables): per level k = 1, 2, ... (minima[k - 1]),
   // the smallest lower bound over each aligned square of 2^k cells per keying value, and the
   // level's size per value. Read only when `summarized`.

@@ -82,9 +82,12 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, int other_ball, const 
   if ((center_a - center_b).squaredNorm() > reach * reach) return false;
   // The block's distance table, when the query has a configuration: bounds proving the links
   // apart or overlapping by more than kTableSlack decide (the exact tests below would agree).
+  // Else the cell's near shapes: only pairs of those can overlap.
+  std::uint64_t near = kAllShapesNear;
   if (s.q != nullptr) {
     double lower = 0.0, upper = 0.0;
-    if (self_block_bounds(static_cast<int>(&block - self_blocks_.data()), s.q, &lower, &upper)) {
+    if (self_block_bounds(static_cast<int>(&block - self_blocks_.data()), s.q, &lower, &upper,
+                          &near)) {
       if (lower > kTableSlack) return false;
       if (upper < -kTableSlack) return true;
     }
@@ -93,6 +96,7 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, int other_ball, const 
   // of them (the UR5's forearm against the gripper's twelve links: one query, not twelve).
   const int cluster = cluster_of_block_[static_cast<std::size_t>(&block - self_blocks_.data())];
   if (cluster >= 0 && many_blocks(cluster) && bodies_apart(cluster, s)) return false;
+  if (near != kAllShapesNear) return near_pairs_overlap(block, near, s);
   // Non-zero when the pieces meeting the other link's hull are marked with it (below).
   std::uint64_t mark = 0;
   if (!single) {
@@ -129,6 +133,28 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, int other_ball, const 
                                 shapes_[static_cast<std::size_t>(p.b)].radius;
       if ((center(p.a, s) - center(p.b, s)).squaredNorm() > pair_reach * pair_reach) continue;
     }
+    if (intersect(shape_of(p.a), shape_pose(p.a, s), shape_of(p.b), shape_pose(p.b, s))) {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool CollisionChecker::near_pairs_overlap(const SelfBlock& block, std::uint64_t near_shapes,
+                                          Scratch& s) const {
+  const int link_a = link_balls_[static_cast<std::size_t>(block.link_a)].link;
+  const int first_a = shape_begin_[static_cast<std::size_t>(link_a)];
+  const int first_b = shape_begin_[static_cast<std::size_t>(
+      link_balls_[static_cast<std::size_t>(block.link_b)].link)];
+  const int shapes_a = link_shape_count(link_a);
+  for (int k = block.begin; k < block.end; ++k) {
+    const SelfPair& p = self_pairs_[static_cast<std::size_t>(k)];
+    if (((near_shapes >> (p.a - first_a)) & (near_shapes >> (shapes_a + p.b - first_b)) & 1) == 0) {
+      continue;
+    }
+    const double reach = shapes_[static_cast<std::size_t>(p.a)].radius +
+                         shapes_[static_cast<std::size_t>(p.b)].radius;
+    if ((center(p.a, s) - center(p.b, s)).squaredNorm() > reach * reach) continue;
     if (intersect(shape_of(p.a), shape_pose(p.a, s), shape_of(p.b), shape_pose(p.b, s))) {
       return true;
     }

@@ -229,6 +229,7 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
     if (!valid[k] || s.undecided[k].empty()) continue;
     model_->compute_link_poses_unchecked(configurations.col(first + k).data(), s.link_poses.data());
     place(s.link_poses, s);
+    s.q = configurations.col(first + k).data();  // the self tables' near shapes
     for (const int b : s.undecided[k]) {
       const bool overlaps =
           b >= 0 ? environment_block_collides(b, s) : self_block_collides(-1 - b, s);

@@ -160,10 +160,7 @@ struct CollisionChecker::MotionSearch {
     return levers.self_pair_levers.row(pair).dot(abs_dq) + 2.0 * extra;
   }
   /// The number of robot shapes of model link `link`.
-  int link_shapes(int link) const {
-    const auto l = static_cast<std::size_t>(link);
-    return c.shape_begin_[l + 1] - c.shape_begin_[l];
-  }
+  int link_shapes(int link) const { return c.link_shape_count(link); }
   /// Tests item_at(0 .. count), each an item of its own; after a contact the remaining ones are
   /// appended untested. kCertified otherwise: the undecided ones were kept.
   template <class ItemAt>

@@ -22,6 +22,14 @@ namespace hullcheck {
 bool intersect(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                const Eigen::Isometry3d& pose_b, const QueryOptions& options = {});
 
+/// True when A and B are at most `distance` (m) apart, overlapping included: intersect() with A
+/// grown by `distance` (the boolean GJK, which stops at a separating plane; no distance is
+/// converged). Verdicts are exact outside the tolerance band of QueryOptions. Throws InputError
+/// unless distance is finite, >= 0 and, with A's margin, at most kMaxLength. Reentrant.
+bool within_distance(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+                     const Eigen::Isometry3d& pose_b, double distance,
+                     const QueryOptions& options = {});
+
 /// Separation distance and closest points (GJK, Casalino eq. 29-31). Distance 0 when overlapping.
 DistanceResult distance(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                         const Eigen::Isometry3d& pose_b, const QueryOptions& options = {});

@@ -425,6 +425,11 @@ class CollisionChecker {
   /// replace more than kGroupSize block queries. Measured (bench_python_reference, MBM
   /// bookshelf_small scene 1): the UR5's gripper (12 blocks) 6-12% faster per state, the
   /// Panda's hand and fingers (4) 4-8% slower.
+  /// The number of robot shapes of model link `link`.
+  int link_shape_count(int link) const {
+    const auto l = static_cast<std::size_t>(link);
+    return shape_begin_[l + 1] - shape_begin_[l];
+  }
   bool many_blocks(int cluster) const {
     const SelfCluster& c = self_clusters_[static_cast<std::size_t>(cluster)];
     return c.end - c.begin > kGroupSize;
@@ -434,6 +439,9 @@ class CollisionChecker {
   bool mark_pieces_meeting(int link_ball, int other_ball, const Shape& other,
                            const Eigen::Isometry3d& other_pose, std::uint64_t mark,
                            Scratch& s) const;
+  // Does a pair of the block whose shapes are both in `near_shapes` (its table cell's, see
+  // self_block_bounds) overlap at the placed shapes? The others are apart by the table.
+  bool near_pairs_overlap(const SelfBlock& block, std::uint64_t near_shapes, Scratch& s) const;
   void place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const;
   const Eigen::Isometry3d& shape_pose(int shape, Scratch& s) const;
   /// Centre (model frame) of robot shape `shape`'s ball at the current query's poses.
@@ -537,7 +545,11 @@ class CollisionChecker {
   /// *lower <= distance <= *upper, those of the cell holding q. False, leaving the bounds
   /// untouched, when the block has no table, q lies outside its grid, or the cell is not
   /// measured.
-  bool self_block_bounds(int block, const double* q, double* lower, double* upper) const;
+  /// With `near_shapes`: also the cell's shapes that may be within kTableSlack of the other
+  /// link (SelfTable::near_shapes), or kAllShapesNear when the table keeps none.
+  bool self_block_bounds(int block, const double* q, double* lower, double* upper,
+                         std::uint64_t* near_shapes = nullptr) const;
+  static constexpr std::uint64_t kAllShapesNear = ~std::uint64_t{0};
   /// A lower bound, m, on self block `block`'s signed distance over the straight motion
   /// q0 + t dq, t in [t0, t1]: the smallest lower bound of the cells it crosses. False (the
   /// bound not written) when the block has no table, the motion leaves the grid, crosses more

@@ -175,6 +175,17 @@ inline bool intersect_query(const Shape& a, const Eigen::Isometry3d& pose_a, con
       });
 }
 
+/// run_intersect on A grown by `distance` and B: are they at most `distance` apart?
+inline bool within_distance_query(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+                                  const Eigen::Isometry3d& pose_b, double distance,
+                                  const QueryOptions& options) {
+  return with_cores(a, b,
+                    [&](const auto& core_a, double radius_a, const auto& core_b, double radius_b) {
+                      return run_intersect(core_a, radius_a + distance, pose_a, core_b, radius_b,
+                                           pose_b, options);
+                    });
+}
+
 /// run_penetration on two shapes.
 inline Answer penetration_query(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                                 const Eigen::Isometry3d& pose_b, const QueryOptions& options) {
