@@ -181,6 +181,21 @@ void bind_core(py::module_& m) {
       a1, a2, a3, a4, a5,
       (std::string("True when A and B overlap or touch (GJK). ") + kPoseDoc).c_str());
   m.def(
+      "within_distance",
+      [](const Shape& a, py::handle pa, const Shape& b, py::handle pb, double d,
+         const QueryOptions& o) {
+        return run_query<bool>(a, pa, b, pb, o,
+                               [d](const Shape& sa, const Eigen::Isometry3d& ta, const Shape& sb,
+                                   const Eigen::Isometry3d& tb, const QueryOptions& options) {
+                                 return within_distance(sa, ta, sb, tb, d, options);
+                               });
+      },
+      a1, a2, a3, a4, py::arg("distance"), a5,
+      (std::string("True when A and B are at most `distance` (m, >= 0) apart, overlapping "
+                   "included (boolean GJK on A grown by it; no distance computed). ") +
+       kPoseDoc)
+          .c_str());
+  m.def(
       "distance",
       [](const Shape& a, py::handle pa, const Shape& b, py::handle pb, const QueryOptions& o) {
         return run_query<DistanceResult>(a, pa, b, pb, o,

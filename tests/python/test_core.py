@@ -29,6 +29,12 @@ def test_spheres_apart_and_overlapping():
     s = hc.signed_distance(a, None, b, translation(0.6, 0, 0))
     assert s.signed_distance == pytest.approx(-0.15, abs=1e-6)
     assert hc.intersect(a, None, b, translation(0.6, 0, 0))
+    # 1.25 apart: within 1.25 + 1e-6, not within 1.25 - 1e-6; overlapping ones within 0.
+    assert hc.within_distance(a, None, b, translation(2, 0, 0), 1.25 + 1e-6)
+    assert not hc.within_distance(a, None, b, translation(2, 0, 0), 1.25 - 1e-6)
+    assert hc.within_distance(a, None, b, translation(0.6, 0, 0), 0.0)
+    with pytest.raises(hc.InputError, match="distance"):
+        hc.within_distance(a, None, b, None, -1.0)
 
 
 def test_boxes_and_angles():

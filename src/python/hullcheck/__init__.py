@@ -48,6 +48,7 @@ from ._hullcheck import (  # noqa: F401
     read_srdf,
     signed_distance,
     validate,
+    within_distance,
 )
 from .planning import benchmark  # noqa: F401
 
