@@ -166,6 +166,15 @@ struct CollisionChecker::SelfTable : JointGrid {
   std::once_flag summary_once;
   /// Builds minima and sets summarized (every cell measured).
   void summarize();
+  /// Walks the cells that the motion q0 + t dq crosses for t in [t0, t1], in order, calling
+  /// visit(cell) on each; false when visit returns false, the motion leaves the grid (a
+  /// bounded value) or crosses more than max_cells cells, or a value without range moves. With
+  /// `reached`, a walk as far as it goes: up to where a value leaves the grid, or max_cells
+  /// cells; *reached is then where it stopped (t1 when it went through, else the start of the
+  /// cell visit refused or did not reach). Defined in self_block_tables.cpp (its only user).
+  template <class Visit>
+  bool walk(const double* q0, const double* dq, double t0, double t1, int max_cells,
+            double* reached, Visit visit) const;
   /// The smallest lower bound over the cells [lo_d, hi_d] (per keying value), at most that of
   /// every one of them: from the coarsest level holding them in two squares per value.
   float box_lower(const int* lo, const int* hi) const;

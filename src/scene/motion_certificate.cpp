@@ -148,6 +148,9 @@ struct CollisionChecker::MotionSearch {
   /// The pairs of a self block whose link hulls come within min_clearance: per shape of the
   /// link with fewer, that shape against the other link's hull, each an item (test_piece_line).
   Outcome test_block_lines(const SelfBlock& block, double rate);
+  /// The pairs of a self block whose shapes are both among `near` (its table's near shapes
+  /// over the interval, self_block_segment_near), each an item; the others are certified.
+  Outcome test_near_pairs(const SelfBlock& block, std::uint64_t near);
   /// One shape of a self block's link against the other link's hull (which holds all of its
   /// shapes): certified, kept whole, or opened into its pairs when within min_clearance.
   Outcome test_piece_line(const Item& item);
@@ -648,6 +651,14 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
   if (coarse(inflated, std::max(ball_a.radius, ball_b.radius), item.rate)) {
     return probe_block(item, std::max(gap, lower));
   }
+  // The table's near shapes over the interval: a pair with a shape not among them is apart by
+  // more than kTableSlack (>= min_clearance) over all of it, certified; the others are items.
+  std::uint64_t near = 0;
+  if (options.min_clearance <= kTableSlack &&
+      c.self_block_segment_near(item.index, q0.data(), dq.data(), centre - half, centre + half,
+                                kMaxTableCells, &near)) {
+    return test_near_pairs(block, near);
+  }
   if (ball_a.bound >= 0 && ball_b.bound >= 0 && block.end - block.begin > 1) {
     // Links that are one shape or one decomposed mesh: their hulls first.
     ++result.exact_queries;
@@ -665,6 +676,29 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
     return test_block_pairs(kSelfPair, block.begin, block.end);
   }
   return test_block_lines(block, item.rate);
+}
+
+CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_near_pairs(
+    const SelfBlock& block, std::uint64_t near) {
+  const int link_a = c.link_balls_[static_cast<std::size_t>(block.link_a)].link;
+  const int link_b = c.link_balls_[static_cast<std::size_t>(block.link_b)].link;
+  const int first_a = c.shape_begin_[static_cast<std::size_t>(link_a)];
+  const int first_b = c.shape_begin_[static_cast<std::size_t>(link_b)];
+  const int shapes_a = link_shapes(link_a);
+  const auto is_near = [&](int p) {
+    const SelfPair& pair = c.self_pairs_[static_cast<std::size_t>(p)];
+    return ((near >> (pair.a - first_a)) & (near >> (shapes_a + pair.b - first_b)) & 1) != 0;
+  };
+  for (int p = block.begin; p < block.end; ++p) {
+    if (!is_near(p) || test(Item{kSelfPair, p, self_pair_rate(p)}) != Outcome::kContact) {
+      continue;
+    }
+    for (int k = p + 1; k < block.end; ++k) {
+      if (is_near(k)) out->push_back(Item{kSelfPair, k, self_pair_rate(k)});
+    }
+    return Outcome::kContact;
+  }
+  return Outcome::kCertified;
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_block_lines(

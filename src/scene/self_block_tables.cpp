@@ -399,43 +399,42 @@ bool CollisionChecker::self_block_bounds(int block, const double* q, double* low
   return true;
 }
 
-bool CollisionChecker::self_block_segment_lower(int block, const double* q0, const double* dq,
-                                                double t0, double t1, int max_cells, double needed,
-                                                double* lower, double* reached) const {
-  const std::vector<SelfTable*>* tables = self_block_tables();
-  const SelfTable* table = tables == nullptr ? nullptr : (*tables)[static_cast<std::size_t>(block)];
+template <class Visit>
+bool CollisionChecker::SelfTable::walk(const double* q0, const double* dq, double t0, double t1,
+                                       int max_cells, double* reached, Visit visit) const {
+  const JointGrid& table = *this;
   if (reached != nullptr) *reached = t0;
-  if (table == nullptr) return false;
   // Cell coordinates u_d(t) = (x_d(t) - lower_d) * cells_per_unit_d along the motion, walked
   // from t0 to t1 one cell boundary at a time (the dimension whose next boundary comes first).
-  int index[kMaxGridValues] = {0, 0, 0};
-  double next[kMaxGridValues];  // t of the next boundary per dimension
-  double step[kMaxGridValues];  // t between boundaries
-  int dir[kMaxGridValues];
+  constexpr int kDims = kMaxGridValues;
+  int index[kDims] = {0, 0, 0};
+  double next[kDims];  // t of the next boundary per dimension
+  double step[kDims];  // t between boundaries
+  int dir[kDims];
   double crossings = 1.0;
-  for (int d = 0; d < table->dims; ++d) {
-    const int v = table->variables[d];
+  for (int d = 0; d < table.dims; ++d) {
+    const int v = table.variables[d];
     next[d] = std::numeric_limits<double>::infinity();
     step[d] = 0.0;
     dir[d] = 0;
-    if (table->cells_per_unit[d] == 0.0) {  // a value without range: it must stay at it
-      if (dq[v] != 0.0 || q0[v] != table->lower[d]) return false;
+    if (table.cells_per_unit[d] == 0.0) {  // a value without range: it must stay at it
+      if (dq[v] != 0.0 || q0[v] != table.lower[d]) return false;
       continue;
     }
     // The motion's ends in cell units (a continuous value's start taken into the grid's turn);
     // a bounded value's must both lie in the grid.
-    const double u = table->coordinate(d, q0[v] + t0 * dq[v]);
-    const double du = dq[v] * table->cells_per_unit[d];  // per unit t
-    if (!table->wraps[d] && !(u >= 0.0 && u <= table->cells[d])) return false;
-    const double u1 = table->coordinate(d, q0[v] + t1 * dq[v]);
-    if (!table->wraps[d] && !(u1 >= 0.0 && u1 <= table->cells[d])) {
+    const double u = table.coordinate(d, q0[v] + t0 * dq[v]);
+    const double du = dq[v] * table.cells_per_unit[d];  // per unit t
+    if (!table.wraps[d] && !(u >= 0.0 && u <= table.cells[d])) return false;
+    const double u1 = table.coordinate(d, q0[v] + t1 * dq[v]);
+    if (!table.wraps[d] && !(u1 >= 0.0 && u1 <= table.cells[d])) {
       if (reached == nullptr) return false;
       // A walk as far as it goes: up to where the value leaves the grid.
-      t1 = std::min(t1, t0 + ((du > 0.0 ? table->cells[d] : 0.0) - u) / du);
+      t1 = std::min(t1, t0 + ((du > 0.0 ? table.cells[d] : 0.0) - u) / du);
     }
-    index[d] = std::min(static_cast<int>(u), table->cells[d] - 1);
+    index[d] = std::min(static_cast<int>(u), table.cells[d] - 1);
     // The cells crossed are at most one plus the boundaries crossed in each dimension: too
-    // many, and nothing is measured (a walk as far as it goes stops at max_cells).
+    // many, and nothing is visited (a walk as far as it goes stops at max_cells).
     crossings += std::abs(du) * (t1 - t0) + 1.0;
     if (crossings > max_cells && reached == nullptr) return false;
     if (du > 0.0) {
@@ -448,41 +447,75 @@ bool CollisionChecker::self_block_segment_lower(int block, const double* q0, con
       next[d] = t0 + (u - index[d]) * step[d];
     }
   }
-  double best = std::numeric_limits<double>::infinity();
   double entered = t0;  // where the walk entered the current cell
   for (int visited = 0; visited < max_cells; ++visited) {
     long cell = 0;
-    for (int d = 0; d < table->dims; ++d) cell = cell * table->cells[d] + index[d];
-    const std::uint64_t word =
-        table->bounds[static_cast<std::size_t>(cell)].load(std::memory_order_relaxed);
-    double lo = 0.0, up = 0.0;
-    if (word != SelfTable::kUnmeasured) unpack(word, &lo, &up);
-    if (word == SelfTable::kUnmeasured || !(lo > needed)) {
+    for (int d = 0; d < table.dims; ++d) cell = cell * table.cells[d] + index[d];
+    if (!visit(static_cast<std::size_t>(cell))) {
       if (reached != nullptr) *reached = entered;
       return false;
     }
-    best = std::min(best, lo);
     int d_next = -1;
-    for (int d = 0; d < table->dims; ++d) {
+    for (int d = 0; d < table.dims; ++d) {
       if (dir[d] != 0 && (d_next < 0 || next[d] < next[d_next])) d_next = d;
     }
     if (d_next < 0 || next[d_next] >= t1) {
-      *lower = best;
       if (reached != nullptr) *reached = t1;
       return true;
     }
     entered = next[d_next];
     int& i = index[d_next];
     i += dir[d_next];
-    if (table->wraps[d_next]) {
-      i = (i + table->cells[d_next]) % table->cells[d_next];
+    if (table.wraps[d_next]) {
+      i = (i + table.cells[d_next]) % table.cells[d_next];
     } else {
-      i = std::clamp(i, 0, table->cells[d_next] - 1);  // only at the grid's edge, by rounding
+      i = std::clamp(i, 0, table.cells[d_next] - 1);  // only at the grid's edge, by rounding
     }
     next[d_next] += step[d_next];
   }
   if (reached != nullptr) *reached = entered;
   return false;
+}
+
+bool CollisionChecker::self_block_segment_lower(int block, const double* q0, const double* dq,
+                                                double t0, double t1, int max_cells, double needed,
+                                                double* lower, double* reached) const {
+  const std::vector<SelfTable*>* tables = self_block_tables();
+  const SelfTable* table = tables == nullptr ? nullptr : (*tables)[static_cast<std::size_t>(block)];
+  if (table == nullptr) {
+    if (reached != nullptr) *reached = t0;
+    return false;
+  }
+  double best = std::numeric_limits<double>::infinity();
+  const bool through = table->walk(q0, dq, t0, t1, max_cells, reached, [&](std::size_t cell) {
+    const std::uint64_t word = table->bounds[cell].load(std::memory_order_relaxed);
+    if (word == SelfTable::kUnmeasured) return false;
+    double lo = 0.0, up = 0.0;
+    unpack(word, &lo, &up);
+    if (!(lo > needed)) return false;
+    best = std::min(best, lo);
+    return true;
+  });
+  if (through) *lower = best;
+  return through;
+}
+
+bool CollisionChecker::self_block_segment_near(int block, const double* q0, const double* dq,
+                                               double t0, double t1, int max_cells,
+                                               std::uint64_t* near_shapes) const {
+  const std::vector<SelfTable*>* tables = self_block_tables();
+  const SelfTable* table = tables == nullptr ? nullptr : (*tables)[static_cast<std::size_t>(block)];
+  if (table == nullptr || table->near_shapes == nullptr) return false;
+  std::uint64_t near = 0;
+  const bool through = table->walk(q0, dq, t0, t1, max_cells, nullptr, [&](std::size_t cell) {
+    if (table->bounds[cell].load(std::memory_order_acquire) == SelfTable::kUnmeasured) {
+      return false;
+    }
+    near |= table->near_shapes[cell].load(std::memory_order_relaxed);
+    return true;
+  });
+  if (through) *near_shapes = near;
+  return through;
 }
 
 void CollisionChecker::measure_self_table_cell(int block, long cell, Scratch& s) const {

@@ -560,6 +560,13 @@ class CollisionChecker {
   bool self_block_segment_lower(int block, const double* q0, const double* dq, double t0, double t1,
                                 int max_cells, double needed, double* lower,
                                 double* reached = nullptr) const;
+  /// The near shapes (self_block_bounds) of every cell the straight motion q0 + t dq crosses
+  /// for t in [t0, t1], or-ed: a pair of the block with a shape not among them is apart by more
+  /// than kTableSlack over that whole motion. False (nothing written) when the block's table
+  /// keeps no near shapes, the motion leaves the grid, crosses more than max_cells cells or one
+  /// not measured.
+  bool self_block_segment_near(int block, const double* q0, const double* dq, double t0, double t1,
+                               int max_cells, std::uint64_t* near_shapes) const;
   /// True when every cell of the box in self block `block`'s grid spanned by the straight
   /// motion q0 + t dq, t in [t0, t1], has a lower bound above `needed` (m), from the table's
   /// summary levels (built by measure_self_tables): the box holds every cell the motion
