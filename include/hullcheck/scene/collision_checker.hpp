@@ -158,11 +158,13 @@ class CollisionChecker {
   /// (the hull of 16 turned copies grown by the chord's sag). Afterwards is_valid,
   /// is_valid_batch and check_motion decide such pairs from the tables wherever the bounds
   /// prove them apart (or overlapping) by more than 1e-6 m, with the same verdicts as without
-  /// (the exact tests run where the bounds decide nothing). The tables depend only on the model
-  /// and its padding: every checker of the same model object shares them, so this runs once
-  /// per model while one of them lives (later calls return at once). Measured (one core, this
-  /// project's benchmarks, one thread): 0.17 s for the MotionBenchMaker Panda, 5.5 s for its
-  /// UR5 with decomposed meshes. Without it no table is used. The cells are measured on
+  /// (the exact tests run where the bounds decide nothing, only on the pairs of the cell's
+  /// near shapes: those that may come within 1e-6 m of the other link there). The tables
+  /// depend only on the model and its padding: every checker of the same model object shares
+  /// them, so this runs once per model while one of them lives (later calls return at once).
+  /// Measured (this project's benchmarks, one thread, 2026-12-07): 0.14 s for the
+  /// MotionBenchMaker Panda, 8.4-9.2 s for its UR5 with decomposed meshes (4.7 s on two).
+  /// Without it no table is used. The cells are measured on
   /// `threads` threads (this one and threads - 1 started for the call and joined before it
   /// returns; 0: one per hardware thread); the tables are the same whatever the count. Throws
   /// InputError for threads < 0. Thread-safe; it may run while other threads query.
