@@ -151,12 +151,10 @@ struct CollisionChecker::SelfTable : JointGrid {
   double block_reach = 0.0;
   std::unique_ptr<std::atomic<std::uint64_t>[]> bounds;  // per cell
   // Per cell, when the two links have at most 64 shapes together (else null): the shapes of
-  // the block's pairs whose lower bound over the cell is kTableSlack or less, bit i for link
-  // a's i-th shape and bit shapes_a + j for link b's j-th. A pair with an unmarked shape is
-  // apart by more than kTableSlack everywhere in the cell. Stored before the cell's bounds
-  // (release), read after them (acquire).
+  // the block's pairs whose lower bound over the cell is kTableSlack or less (NearShapeBits).
+  // A pair with an unmarked shape is apart by more than kTableSlack everywhere in the cell.
+  // Stored before the cell's bounds (release), read after them (acquire).
   std::unique_ptr<std::atomic<std::uint64_t>[]> near_shapes;
-  int shapes_a = 0;  // link a's shape count
   // Once every cell is measured (measure_self_tables): per level k = 1, 2, ... (minima[k - 1]),
   // the smallest lower bound over each aligned square of 2^k cells per keying value, and the
   // level's size per value. Read only when `summarized`.
@@ -178,6 +176,21 @@ struct CollisionChecker::SelfTable : JointGrid {
   /// The smallest lower bound over the cells [lo_d, hi_d] (per keying value), at most that of
   /// every one of them: from the coarsest level holding them in two squares per value.
   float box_lower(const int* lo, const int* hi) const;
+};
+
+// The bits of a self block's near-shape masks: bit i for link a's i-th shape, bit shapes_a + j
+// for link b's j-th (at most 64 together).
+struct CollisionChecker::NearShapeBits {
+  int first_a = 0, first_b = 0, shapes_a = 0;  // the links' first robot shapes, a's count
+  /// The bits of pair p's two shapes.
+  std::uint64_t of(const SelfPair& p) const {
+    return (std::uint64_t{1} << (p.a - first_a)) | (std::uint64_t{1} << (shapes_a + p.b - first_b));
+  }
+  /// True when both of p's shapes are in `mask`.
+  bool both(std::uint64_t mask, const SelfPair& p) const {
+    const std::uint64_t bits = of(p);
+    return (mask & bits) == bits;
+  }
 };
 
 // The tables of one model at one padding revision, keyed by link pair, shared by its

@@ -96,10 +96,10 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, int other_ball, const 
   // of them (the UR5's forearm against the gripper's twelve links: one query, not twelve).
   const int cluster = cluster_of_block_[static_cast<std::size_t>(&block - self_blocks_.data())];
   if (cluster >= 0 && many_blocks(cluster) && bodies_apart(cluster, s)) return false;
-  if (near != kAllShapesNear) return near_pairs_overlap(block, near, s);
+  const NearShapeBits bits = near_shape_bits(block);
   // Non-zero when the pieces meeting the other link's hull are marked with it (below).
   std::uint64_t mark = 0;
-  if (!single) {
+  if (!single && near == kAllShapesNear) {
     // Links that are one shape or one decomposed mesh: their hulls first.
     const int bound_a = link_balls_[static_cast<std::size_t>(block.link_a)].bound;
     const int bound_b = link_balls_[static_cast<std::size_t>(block.link_b)].bound;
@@ -124,6 +124,7 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, int other_ball, const 
   }
   for (int k = block.begin; k < block.end; ++k) {
     const SelfPair& p = self_pairs_[static_cast<std::size_t>(k)];
+    if (near != kAllShapesNear && !bits.both(near, p)) continue;  // apart by the table
     if (mark != 0 && (s.meets_other[static_cast<std::size_t>(p.a)] != mark ||
                       s.meets_other[static_cast<std::size_t>(p.b)] != mark)) {
       continue;  // one of the two pieces is clear of the other link's hull
@@ -133,28 +134,6 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, int other_ball, const 
                                 shapes_[static_cast<std::size_t>(p.b)].radius;
       if ((center(p.a, s) - center(p.b, s)).squaredNorm() > pair_reach * pair_reach) continue;
     }
-    if (intersect(shape_of(p.a), shape_pose(p.a, s), shape_of(p.b), shape_pose(p.b, s))) {
-      return true;
-    }
-  }
-  return false;
-}
-
-bool CollisionChecker::near_pairs_overlap(const SelfBlock& block, std::uint64_t near_shapes,
-                                          Scratch& s) const {
-  const int link_a = link_balls_[static_cast<std::size_t>(block.link_a)].link;
-  const int first_a = shape_begin_[static_cast<std::size_t>(link_a)];
-  const int first_b = shape_begin_[static_cast<std::size_t>(
-      link_balls_[static_cast<std::size_t>(block.link_b)].link)];
-  const int shapes_a = link_shape_count(link_a);
-  for (int k = block.begin; k < block.end; ++k) {
-    const SelfPair& p = self_pairs_[static_cast<std::size_t>(k)];
-    if (((near_shapes >> (p.a - first_a)) & (near_shapes >> (shapes_a + p.b - first_b)) & 1) == 0) {
-      continue;
-    }
-    const double reach = shapes_[static_cast<std::size_t>(p.a)].radius +
-                         shapes_[static_cast<std::size_t>(p.b)].radius;
-    if ((center(p.a, s) - center(p.b, s)).squaredNorm() > reach * reach) continue;
     if (intersect(shape_of(p.a), shape_pose(p.a, s), shape_of(p.b), shape_pose(p.b, s))) {
       return true;
     }

@@ -680,14 +680,9 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_near_pairs(
     const SelfBlock& block, std::uint64_t near) {
-  const int link_a = c.link_balls_[static_cast<std::size_t>(block.link_a)].link;
-  const int link_b = c.link_balls_[static_cast<std::size_t>(block.link_b)].link;
-  const int first_a = c.shape_begin_[static_cast<std::size_t>(link_a)];
-  const int first_b = c.shape_begin_[static_cast<std::size_t>(link_b)];
-  const int shapes_a = link_shapes(link_a);
+  const NearShapeBits bits = c.near_shape_bits(block);
   const auto is_near = [&](int p) {
-    const SelfPair& pair = c.self_pairs_[static_cast<std::size_t>(p)];
-    return ((near >> (pair.a - first_a)) & (near >> (shapes_a + pair.b - first_b)) & 1) != 0;
+    return bits.both(near, c.self_pairs_[static_cast<std::size_t>(p)]);
   };
   for (int p = block.begin; p < block.end; ++p) {
     if (!is_near(p) || test(Item{kSelfPair, p, self_pair_rate(p)}) != Outcome::kContact) {

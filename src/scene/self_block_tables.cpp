@@ -221,8 +221,7 @@ const std::vector<CollisionChecker::SelfTable*>& CollisionChecker::set_up_self_t
         for (std::size_t c = 0; c < made->cell_count; ++c) {
           made->bounds[c].store(SelfTable::kUnmeasured, std::memory_order_relaxed);
         }
-        made->shapes_a = link_shape_count(ball_a.link);
-        if (made->shapes_a + link_shape_count(ball_b.link) <= 64) {
+        if (link_shape_count(ball_a.link) + link_shape_count(ball_b.link) <= 64) {
           made->near_shapes = std::make_unique<std::atomic<std::uint64_t>[]>(made->cell_count);
           for (std::size_t c = 0; c < made->cell_count; ++c) {
             made->near_shapes[c].store(kAllShapesNear, std::memory_order_relaxed);
@@ -402,37 +401,35 @@ bool CollisionChecker::self_block_bounds(int block, const double* q, double* low
 template <class Visit>
 bool CollisionChecker::SelfTable::walk(const double* q0, const double* dq, double t0, double t1,
                                        int max_cells, double* reached, Visit visit) const {
-  const JointGrid& table = *this;
   if (reached != nullptr) *reached = t0;
   // Cell coordinates u_d(t) = (x_d(t) - lower_d) * cells_per_unit_d along the motion, walked
   // from t0 to t1 one cell boundary at a time (the dimension whose next boundary comes first).
-  constexpr int kDims = kMaxGridValues;
-  int index[kDims] = {0, 0, 0};
-  double next[kDims];  // t of the next boundary per dimension
-  double step[kDims];  // t between boundaries
-  int dir[kDims];
+  int index[kMaxGridValues] = {0, 0, 0};
+  double next[kMaxGridValues];  // t of the next boundary per dimension
+  double step[kMaxGridValues];  // t between boundaries
+  int dir[kMaxGridValues];
   double crossings = 1.0;
-  for (int d = 0; d < table.dims; ++d) {
-    const int v = table.variables[d];
+  for (int d = 0; d < dims; ++d) {
+    const int v = variables[d];
     next[d] = std::numeric_limits<double>::infinity();
     step[d] = 0.0;
     dir[d] = 0;
-    if (table.cells_per_unit[d] == 0.0) {  // a value without range: it must stay at it
-      if (dq[v] != 0.0 || q0[v] != table.lower[d]) return false;
+    if (cells_per_unit[d] == 0.0) {  // a value without range: it must stay at it
+      if (dq[v] != 0.0 || q0[v] != lower[d]) return false;
       continue;
     }
     // The motion's ends in cell units (a continuous value's start taken into the grid's turn);
     // a bounded value's must both lie in the grid.
-    const double u = table.coordinate(d, q0[v] + t0 * dq[v]);
-    const double du = dq[v] * table.cells_per_unit[d];  // per unit t
-    if (!table.wraps[d] && !(u >= 0.0 && u <= table.cells[d])) return false;
-    const double u1 = table.coordinate(d, q0[v] + t1 * dq[v]);
-    if (!table.wraps[d] && !(u1 >= 0.0 && u1 <= table.cells[d])) {
+    const double u = coordinate(d, q0[v] + t0 * dq[v]);
+    const double du = dq[v] * cells_per_unit[d];  // per unit t
+    if (!wraps[d] && !(u >= 0.0 && u <= cells[d])) return false;
+    const double u1 = coordinate(d, q0[v] + t1 * dq[v]);
+    if (!wraps[d] && !(u1 >= 0.0 && u1 <= cells[d])) {
       if (reached == nullptr) return false;
       // A walk as far as it goes: up to where the value leaves the grid.
-      t1 = std::min(t1, t0 + ((du > 0.0 ? table.cells[d] : 0.0) - u) / du);
+      t1 = std::min(t1, t0 + ((du > 0.0 ? cells[d] : 0.0) - u) / du);
     }
-    index[d] = std::min(static_cast<int>(u), table.cells[d] - 1);
+    index[d] = std::min(static_cast<int>(u), cells[d] - 1);
     // The cells crossed are at most one plus the boundaries crossed in each dimension: too
     // many, and nothing is visited (a walk as far as it goes stops at max_cells).
     crossings += std::abs(du) * (t1 - t0) + 1.0;
@@ -450,13 +447,13 @@ bool CollisionChecker::SelfTable::walk(const double* q0, const double* dq, doubl
   double entered = t0;  // where the walk entered the current cell
   for (int visited = 0; visited < max_cells; ++visited) {
     long cell = 0;
-    for (int d = 0; d < table.dims; ++d) cell = cell * table.cells[d] + index[d];
+    for (int d = 0; d < dims; ++d) cell = cell * cells[d] + index[d];
     if (!visit(static_cast<std::size_t>(cell))) {
       if (reached != nullptr) *reached = entered;
       return false;
     }
     int d_next = -1;
-    for (int d = 0; d < table.dims; ++d) {
+    for (int d = 0; d < dims; ++d) {
       if (dir[d] != 0 && (d_next < 0 || next[d] < next[d_next])) d_next = d;
     }
     if (d_next < 0 || next[d_next] >= t1) {
@@ -466,15 +463,22 @@ bool CollisionChecker::SelfTable::walk(const double* q0, const double* dq, doubl
     entered = next[d_next];
     int& i = index[d_next];
     i += dir[d_next];
-    if (table.wraps[d_next]) {
-      i = (i + table.cells[d_next]) % table.cells[d_next];
+    if (wraps[d_next]) {
+      i = (i + cells[d_next]) % cells[d_next];
     } else {
-      i = std::clamp(i, 0, table.cells[d_next] - 1);  // only at the grid's edge, by rounding
+      i = std::clamp(i, 0, cells[d_next] - 1);  // only at the grid's edge, by rounding
     }
     next[d_next] += step[d_next];
   }
   if (reached != nullptr) *reached = entered;
   return false;
+}
+
+CollisionChecker::NearShapeBits CollisionChecker::near_shape_bits(const SelfBlock& block) const {
+  const int link_a = link_balls_[static_cast<std::size_t>(block.link_a)].link;
+  const int link_b = link_balls_[static_cast<std::size_t>(block.link_b)].link;
+  return {shape_begin_[static_cast<std::size_t>(link_a)],
+          shape_begin_[static_cast<std::size_t>(link_b)], link_shape_count(link_a)};
 }
 
 bool CollisionChecker::self_block_segment_lower(int block, const double* q0, const double* dq,
@@ -638,8 +642,7 @@ void CollisionChecker::measure_self_table_cell(int block, long cell, Scratch& s)
     // farther than kTableSlack (a bound only is settled by the boolean test, no distance
     // converged; its verdict is exact outside a tolerance far below kTableSlack).
     if (table.near_shapes != nullptr && !(std::max(lo, floor) > kTableSlack)) {
-      const int first_a = shape_begin_[static_cast<std::size_t>(la)];
-      const int first_b = shape_begin_[static_cast<std::size_t>(lb)];
+      const NearShapeBits bits = near_shape_bits(b);
       for (int p = b.begin; p < b.end; ++p) {
         const SelfPair& pair = self_pairs_[static_cast<std::size_t>(p)];
         const auto i = static_cast<std::size_t>(p - b.begin);
@@ -652,8 +655,7 @@ void CollisionChecker::measure_self_table_cell(int block, long cell, Scratch& s)
             continue;
           }
         }
-        near |= (std::uint64_t{1} << (pair.a - first_a)) |
-                (std::uint64_t{1} << (table.shapes_a + pair.b - first_b));
+        near |= bits.of(pair);
       }
     }
   }

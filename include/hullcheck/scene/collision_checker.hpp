@@ -441,9 +441,6 @@ class CollisionChecker {
   bool mark_pieces_meeting(int link_ball, int other_ball, const Shape& other,
                            const Eigen::Isometry3d& other_pose, std::uint64_t mark,
                            Scratch& s) const;
-  // Does a pair of the block whose shapes are both in `near_shapes` (its table cell's, see
-  // self_block_bounds) overlap at the placed shapes? The others are apart by the table.
-  bool near_pairs_overlap(const SelfBlock& block, std::uint64_t near_shapes, Scratch& s) const;
   void place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const;
   const Eigen::Isometry3d& shape_pose(int shape, Scratch& s) const;
   /// Centre (model frame) of robot shape `shape`'s ball at the current query's poses.
@@ -521,6 +518,9 @@ class CollisionChecker {
   // measure_self_tables. They depend only on the model (and its padding): shared by every
   // checker of the same model (found at construction); copies share them.
   struct SelfTable;
+  struct NearShapeBits;
+  /// The layout of self block `block`'s near-shape masks (SelfTable::near_shapes).
+  NearShapeBits near_shape_bits(const SelfBlock& block) const;
   struct SelfTables;
   struct SweptLink;
   /// The joint next to `link_ball`'s link on the way to `other_ball`'s (swept_links.cpp): -1
