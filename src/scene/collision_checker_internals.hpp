@@ -245,6 +245,11 @@ struct CollisionChecker::MotionLevers {
   // root down, and per joint and shape the lever per unit of the joint's own value.
   std::vector<std::vector<int>> link_chains;
   const Eigen::MatrixXd* joint_arms = nullptr;  // joints x shapes: the model's shared ones
+  // check_motion's speed bounds (chain_speed.hpp) for bounding volumes: per joint, the largest
+  // lever of the shapes of a shape group / of a link ball's link (joints x groups, joints x
+  // link balls), and per group the model link carrying all its shapes (-1: several links).
+  Eigen::MatrixXd group_arms, link_ball_arms;
+  std::vector<int> group_link;
 };
 
 // Bounds on the signed distance of A and B from their supporting planes normal to the unit

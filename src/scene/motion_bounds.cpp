@@ -257,6 +257,25 @@ void CollisionChecker::build_motion_levers(MotionLevers& out) const {
       raise(out.group_levers, g, out.shape_levers.row(sh));
     }
   }
+  out.group_arms = Eigen::MatrixXd::Zero(joint_count, static_cast<Eigen::Index>(groups_.size()));
+  out.group_link.assign(groups_.size(), -1);
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    const auto col = static_cast<Eigen::Index>(g);
+    out.group_link[g] = shapes_[static_cast<std::size_t>(groups_[g].begin)].link;
+    for (int sh = groups_[g].begin; sh < groups_[g].end; ++sh) {
+      out.group_arms.col(col) = out.group_arms.col(col).cwiseMax(arm.col(sh));
+      if (shapes_[static_cast<std::size_t>(sh)].link != out.group_link[g]) out.group_link[g] = -1;
+    }
+  }
+  out.link_ball_arms =
+      Eigen::MatrixXd::Zero(joint_count, static_cast<Eigen::Index>(link_balls_.size()));
+  for (std::size_t b = 0; b < link_balls_.size(); ++b) {
+    const auto link = static_cast<std::size_t>(link_balls_[b].link);
+    for (int sh = shape_begin_[link]; sh < shape_begin_[link + 1]; ++sh) {
+      out.link_ball_arms.col(static_cast<Eigen::Index>(b)) =
+          out.link_ball_arms.col(static_cast<Eigen::Index>(b)).cwiseMax(arm.col(sh));
+    }
+  }
   out.self_block_levers =
       Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(self_blocks_.size()), variables);
   for (std::size_t k = 0; k < self_blocks_.size(); ++k) {

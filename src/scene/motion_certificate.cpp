@@ -10,6 +10,11 @@
 // pair keeps clearance > min_clearance over the whole interval. A bounding volume at q(m) (a
 // group's or link's ball, a decomposed mesh's hull) contains its members there, so the same
 // test on it, with the largest of its members' rates, proves all of them at once.
+// Within an interval an item's rate is the smaller of that and a bound from the configuration
+// at its middle (rate_of, chain_speed.hpp): the speed its points have at q(m) (the joints'
+// motions partly cancel, and the levers hold for every configuration) plus h times a bound on
+// how fast that speed can change. Measured (bench_vamp, MBM): on average 0.5 (Panda) and 0.7
+// (UR5) of the levers' rate where exact tests are made.
 //
 // The search. Intervals are examined depth first, left half first, each with the items (blocks
 // of pairs or single pairs) that no enclosing interval decided: so when an interval is taken
@@ -50,6 +55,7 @@
 #include <limits>
 #include <string>
 
+#include "chain_speed.hpp"
 #include "collision_checker_internals.hpp"
 
 namespace hullcheck {
@@ -185,12 +191,12 @@ struct CollisionChecker::MotionSearch {
     s.q = s.motion_q.data();  // self pairs' warm-start grids, self blocks' tables
   }
   /// A block on an interval too coarse to decide it: kept whole, tested for contact only.
-  Outcome probe_block(const Item& item, double gap);
+  Outcome probe_block(const Item& item, double gap, double rate);
   /// What a block's bounding-hull query `r` (cutoff: the block's margin) decides: kCertified,
   /// kPending (kept whole), or kOpen (test the pieces). `lower` is another lower bound on the
   /// block's signed distance at q(m) (its table's; -inf when none). With `min_window`, kept
   /// whole only while the hull's distance proves at least that fraction of the half-width.
-  Outcome hull_outcome(const Item& item, const SignedDistanceResult& r, double lower,
+  Outcome hull_outcome(const Item& item, double rate, const SignedDistanceResult& r, double lower,
                        double min_window = 0.0);
   /// True when a bounding volume of size `radius` may move by more than its own size within
   /// the interval (its margin exceeds the radius), above the resolution: its pairs cannot be
@@ -199,17 +205,34 @@ struct CollisionChecker::MotionSearch {
     return inflated > radius && half * rate > options.resolution;
   }
   Outcome test_pair(std::size_t pair, const Item& item);
+  /// The item's rate within the interval (how far its shapes, or their bounding volumes, move
+  /// per unit t, relative to each other for self items): the smaller of its levers' rate
+  /// (item.rate) and the bound from their speeds at q(m) and how fast those can change
+  /// (chain_speed.hpp). Measured (bench_vamp, Panda): ~0.5 of the levers' rate on average.
+  double rate_of(const Item& item);
   /// The distance between a point of each of the pair's shapes at q(m): >= the signed distance.
   double pair_upper_bound(std::size_t pair) const;
-  /// A pair within its margin, apart at q(m) along the unit `normal` (from its robot shape, or
-  /// its first shape, towards the other): certified, or kept, by how fast its shapes can
-  /// approach along that direction (directional_rate); kPending when nothing is gained.
+  /// A pair within its margin (at `rate`), apart at q(m) along the unit `normal` (from its robot
+  /// shape, or its first shape, towards the other): certified, or kept, by how fast its shapes
+  /// can approach along that direction (directional_rate); kPending when nothing is gained.
   Outcome test_direction(std::size_t pair, const Item& item, const Eigen::Vector3d& normal,
-                         double lower);
+                         double lower, double rate);
   /// A bound on how fast, per unit t within the interval, the gap between shapes a and b (b < 0:
   /// an obstacle) along the unit direction n can shrink, n being fixed in the frame of their
   /// links' deepest common ancestor (the world for an obstacle). See the file comment.
   double directional_rate(int a, int b, const Eigen::Vector3d& n) const;
+  /// How many joints the chains of model links a and b share from the root: those move the
+  /// two together, rigidly.
+  std::size_t common_joints(int link_a, int link_b) const {
+    const std::vector<int>& chain_a = levers.link_chains[static_cast<std::size_t>(link_a)];
+    const std::vector<int>& chain_b = levers.link_chains[static_cast<std::size_t>(link_b)];
+    std::size_t common = 0;
+    while (common < chain_a.size() && common < chain_b.size() &&
+           chain_a[common] == chain_b[common]) {
+      ++common;
+    }
+    return common;
+  }
   /// Self block `slot`'s warm start for its hull query, from its previous query in this motion
   /// (cold on its first use in this motion). Measured: it saves a tenth on the UR5's motions;
   /// warm starting pairs the same way cost the Panda's a quarter more (starts from a distant
@@ -545,10 +568,12 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_env
   const EnvironmentBlock& block = c.blocks_[static_cast<std::size_t>(item.index)];
   const auto g = static_cast<std::size_t>(block.group);
   const ObstacleBox& box = c.boxes_[static_cast<std::size_t>(block.obstacle)];
-  const double inflated = margin(item.rate);
   const double gap = c.box_gap(box, s.group_centers[g], s.group_radii[g]);
+  if (gap > margin(item.rate)) return Outcome::kCertified;
+  const double rate = rate_of(item);
+  const double inflated = margin(rate);
   if (gap > inflated) return Outcome::kCertified;
-  if (coarse(inflated, s.group_radii[g], item.rate)) return probe_block(item, gap);
+  if (coarse(inflated, s.group_radii[g], rate)) return probe_block(item, gap, rate);
   const int bound = c.groups_[g].bound;
   if (bound >= 0 && block.end - block.begin > 1) {
     // A decomposed mesh: its hull (containing every piece) first.
@@ -556,7 +581,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_env
     ++result.exact_queries;
     const SignedDistanceResult r = signed_distance_below(
         c.bounding_shape(bound), c.shape_pose(bound, s), o.shape, o.pose, inflated);
-    if (const Outcome h = hull_outcome(item, r, -std::numeric_limits<double>::infinity());
+    if (const Outcome h = hull_outcome(item, rate, r, -std::numeric_limits<double>::infinity());
         h != Outcome::kOpen) {
       return h;
     }
@@ -570,7 +595,6 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_env
   const int first = c.group_block_begin_[g], last = c.group_block_begin_[g + 1];
   const Eigen::Vector3d& ball_centre = s.group_centers[g];
   const double radius = s.group_radii[g];
-  const double inflated = margin(item.rate);
   const auto gap = [&](int b) {
     const EnvironmentBlock& block = c.blocks_[static_cast<std::size_t>(b)];
     return c.box_gap(c.boxes_[static_cast<std::size_t>(block.obstacle)], ball_centre, radius);
@@ -583,8 +607,11 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_env
     s.group_gaps[static_cast<std::size_t>(b - first)] = gap(b);
     lower = std::min(lower, s.group_gaps[static_cast<std::size_t>(b - first)]);
   }
+  if (lower > margin(item.rate)) return Outcome::kCertified;
+  const double rate = rate_of(item);
+  const double inflated = margin(rate);
   if (lower > inflated) return Outcome::kCertified;
-  if (!coarse(inflated, radius, item.rate)) {
+  if (!coarse(inflated, radius, rate)) {
     // Fine enough to tell the obstacles apart: each block an item of its own (the ones the
     // group's ball certifies again at once).
     return test_each(last - first, [&](int i) {
@@ -601,7 +628,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_env
       return Outcome::kContact;
     }
   }
-  keep(item, lower);
+  keep(item, lower, rate);
   return Outcome::kPending;
 }
 
@@ -610,11 +637,13 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
   const SelfBlock& block = c.self_blocks_[static_cast<std::size_t>(item.index)];
   const LinkBall& ball_a = c.link_balls_[static_cast<std::size_t>(block.link_a)];
   const LinkBall& ball_b = c.link_balls_[static_cast<std::size_t>(block.link_b)];
-  const double inflated = margin(item.rate);
   const double gap = (s.link_centers[static_cast<std::size_t>(block.link_a)] -
                       s.link_centers[static_cast<std::size_t>(block.link_b)])
                          .norm() -
                      ball_a.radius - ball_b.radius;
+  if (gap > margin(item.rate)) return Outcome::kCertified;
+  const double rate = rate_of(item);
+  const double inflated = margin(rate);
   if (gap > inflated) return Outcome::kCertified;
   // The block's distance table: walked from q(m) both ways as far as its cells' lower bounds
   // stay above min_clearance. Both ends reached prove the block over the whole interval; half
@@ -648,8 +677,8 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
       return Outcome::kContact;
     }
   }
-  if (coarse(inflated, std::max(ball_a.radius, ball_b.radius), item.rate)) {
-    return probe_block(item, std::max(gap, lower));
+  if (coarse(inflated, std::max(ball_a.radius, ball_b.radius), rate)) {
+    return probe_block(item, std::max(gap, lower), rate);
   }
   // The table's near shapes over the interval: a pair with a shape not among them is apart by
   // more than kTableSlack (>= min_clearance) over all of it, certified; the others are items.
@@ -666,7 +695,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
         signed_distance_below(c.bounding_shape(ball_a.bound), c.shape_pose(ball_a.bound, s),
                               c.bounding_shape(ball_b.bound), c.shape_pose(ball_b.bound, s),
                               inflated, warm_start(static_cast<std::size_t>(item.index)));
-    if (const Outcome h = hull_outcome(item, r, lower); h != Outcome::kOpen) return h;
+    if (const Outcome h = hull_outcome(item, rate, r, lower); h != Outcome::kOpen) return h;
   }
   // Lines only where more than two values move the block's links relative to each other (a
   // forearm against the wrist's last link: a table, if any, sweeps a link). Elsewhere the pairs
@@ -724,13 +753,15 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pie
       c.link_ball_of_link_[static_cast<std::size_t>(other_link)])];
   // A row's pairs are consecutive, a column's n_b apart.
   const int stride = row ? 1 : link_shapes(c.shapes_[static_cast<std::size_t>(first.b)].link);
-  const double inflated = margin(item.rate);
   const RobotShape& rs = c.shapes_[static_cast<std::size_t>(shape)];
   const double gap =
       (c.center(shape, s) - s.link_centers[static_cast<std::size_t>(
                                 c.link_ball_of_link_[static_cast<std::size_t>(other_link)])])
           .norm() -
       rs.radius - other.radius;
+  if (gap > margin(item.rate)) return Outcome::kCertified;
+  const double rate = rate_of(item);
+  const double inflated = margin(rate);
   if (gap > inflated) return Outcome::kCertified;
   ++result.exact_queries;
   const SignedDistanceResult r =
@@ -740,7 +771,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pie
   // interval: a hull closer than the line's pairs (a concave link) would split the motion
   // where its pairs, on their own, would not.
   if (const Outcome h =
-          hull_outcome(item, r, -std::numeric_limits<double>::infinity(), kLineWindow);
+          hull_outcome(item, rate, r, -std::numeric_limits<double>::infinity(), kLineWindow);
       h != Outcome::kOpen) {
     return h;
   }
@@ -780,7 +811,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
   const SignedDistanceResult r = signed_distance_below(
       *a.hull, pose_a, *b.hull, pose_b, inflated,
       warm_start(c.self_blocks_.size() + static_cast<std::size_t>(item.index)));
-  if (const Outcome h = hull_outcome(item, r, -std::numeric_limits<double>::infinity());
+  if (const Outcome h = hull_outcome(item, item.rate, r, -std::numeric_limits<double>::infinity());
       h != Outcome::kOpen) {
     return h;
   }
@@ -791,8 +822,8 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_sel
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::hull_outcome(
-    const Item& item, const SignedDistanceResult& r, double lower, double min_window) {
-  const double inflated = margin(item.rate);
+    const Item& item, double rate, const SignedDistanceResult& r, double lower, double min_window) {
+  const double inflated = margin(rate);
   if (r.status == Status::kAboveCutoff && r.signed_distance >= inflated) {
     return Outcome::kCertified;
   }
@@ -801,16 +832,16 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::hull_out
   // per interval instead of one per piece pair). Above the resolution only: there the pieces,
   // possibly further apart than their hulls, decide.
   if (r.status == Status::kConverged && r.signed_distance > options.min_clearance &&
-      r.signed_distance - options.min_clearance >= min_window * half * item.rate &&
-      half * item.rate > options.resolution) {
-    keep(item, std::max(r.signed_distance, lower));
+      r.signed_distance - options.min_clearance >= min_window * half * rate &&
+      half * rate > options.resolution) {
+    keep(item, std::max(r.signed_distance, lower), rate);
     return Outcome::kPending;
   }
   return Outcome::kOpen;
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::probe_block(
-    const Item& item, double gap) {
+    const Item& item, double gap, double rate) {
   // Too coarse an interval to prove much of this block: only whether it collides at q(m)
   // (is_valid's tests), which drops everything right of m when it does.
   const bool collides = item.kind == kEnvironmentBlock ? c.environment_block_collides(item.index, s)
@@ -820,7 +851,7 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::probe_bl
     contact_rate = item.rate;
     return Outcome::kContact;
   }
-  keep(item, gap);
+  keep(item, gap, rate);
   return Outcome::kPending;
 }
 
@@ -841,16 +872,18 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_blo
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pair(
     std::size_t pair, const Item& item) {
-  const double inflated = margin(item.rate);
   const double gap = c.pair_ball_gap(pair, s);
+  if (gap > margin(item.rate)) return Outcome::kCertified;
+  const double rate = rate_of(item);
+  const double inflated = margin(rate);
   if (gap > inflated) return Outcome::kCertified;
   // Where even an upper bound on the distance (from a point of one shape to a point of the
   // other) is within the margin, no test can certify the pair over this interval, above the
   // resolution: only a contact at q(m) is looked for (a query as cheap as a boolean one on
   // shapes apart), and not even that when the balls are apart.
-  const bool hopeless = pair_upper_bound(pair) <= inflated && half * item.rate > options.resolution;
+  const bool hopeless = pair_upper_bound(pair) <= inflated && half * rate > options.resolution;
   if (hopeless && gap > options.min_clearance) {
-    keep(item, gap);
+    keep(item, gap, rate);
     return Outcome::kPending;
   }
   ++result.exact_queries;
@@ -859,15 +892,15 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pai
   const Outcome outcome =
       hopeless
           ? (r.signed_distance <= options.min_clearance ? Outcome::kContact : Outcome::kPending)
-          : exact_outcome(r, item.rate);
+          : exact_outcome(r, rate);
   if (outcome == Outcome::kPending && !hopeless && r.status == Status::kConverged &&
       r.signed_distance > options.min_clearance) {
-    return test_direction(pair, item, r.normal, std::max(gap, r.signed_distance));
+    return test_direction(pair, item, r.normal, std::max(gap, r.signed_distance), rate);
   }
   if (outcome == Outcome::kPending) {
     // A converged distance or a proven bound (kAboveCutoff); otherwise only the balls' gap.
     const bool proven = r.status == Status::kConverged || r.status == Status::kAboveCutoff;
-    keep(item, proven ? std::max(gap, r.signed_distance) : gap);
+    keep(item, proven ? std::max(gap, r.signed_distance) : gap, rate);
   } else if (outcome == Outcome::kContact) {
     contact_rate = item.rate;
     out->push_back(item);  // searched for earlier in the left half
@@ -875,8 +908,85 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pai
   return outcome;
 }
 
+double CollisionChecker::MotionSearch::rate_of(const Item& item) {
+  if (extra != 0.0) return item.rate;  // a prismatic joint moves: the levers' rate
+  // The speed bound of a ball of model link `link`, relative to the frame its chain's first
+  // `from` joints move.
+  const auto speed = [&](int link, std::size_t from, const double* arms,
+                         const Eigen::Vector3d& ball_centre, double radius) {
+    return chain_speed(*c.model_, *s.link_poses_in,
+                       levers.link_chains[static_cast<std::size_t>(link)], from, dq, arms,
+                       ball_centre, radius);
+  };
+  const auto shape_speed = [&](int shape, std::size_t from) {
+    const RobotShape& rs = c.shapes_[static_cast<std::size_t>(shape)];
+    return speed(rs.link, from, levers.joint_arms->col(shape).data(), c.center(shape, s),
+                 rs.radius);
+  };
+  const auto ball_speed = [&](int ball, std::size_t from) {
+    const auto b = static_cast<std::size_t>(ball);
+    return speed(c.link_balls_[b].link, from, levers.link_ball_arms.col(ball).data(),
+                 s.link_centers[b], c.link_balls_[b].radius);
+  };
+  const auto link_of_ball = [&](int ball) {
+    return c.link_balls_[static_cast<std::size_t>(ball)].link;
+  };
+  const auto sum = [](const ChainSpeed& a, const ChainSpeed& b) {
+    return ChainSpeed{a.speed + b.speed, a.accel + b.accel, a.usable && b.usable};
+  };
+  ChainSpeed bound;
+  switch (item.kind) {
+    case kEnvironmentGroup:
+    case kEnvironmentBlock: {
+      const auto g = static_cast<std::size_t>(
+          item.kind == kEnvironmentGroup ? item.index
+                                         : c.blocks_[static_cast<std::size_t>(item.index)].group);
+      if (levers.group_link[g] < 0) return item.rate;
+      bound =
+          speed(levers.group_link[g], 0, levers.group_arms.col(static_cast<Eigen::Index>(g)).data(),
+                s.group_centers[g], s.group_radii[g]);
+      break;
+    }
+    case kEnvironmentPair:
+      bound = shape_speed(c.environment_pairs_[static_cast<std::size_t>(item.index)].shape, 0);
+      break;
+    case kSelfPair: {
+      const SelfPair& p = c.self_pairs_[static_cast<std::size_t>(item.index)];
+      const std::size_t common = common_joints(c.shapes_[static_cast<std::size_t>(p.a)].link,
+                                               c.shapes_[static_cast<std::size_t>(p.b)].link);
+      bound = sum(shape_speed(p.a, common), shape_speed(p.b, common));
+      break;
+    }
+    case kSelfBlock: {
+      const SelfBlock& block = c.self_blocks_[static_cast<std::size_t>(item.index)];
+      const std::size_t common =
+          common_joints(link_of_ball(block.link_a), link_of_ball(block.link_b));
+      bound = sum(ball_speed(block.link_a, common), ball_speed(block.link_b, common));
+      break;
+    }
+    case kSelfPieceRow:
+    case kSelfPieceColumn: {
+      // The line's shape and the other link's ball (see test_piece_line).
+      const SelfPair& first = c.self_pairs_[static_cast<std::size_t>(item.index)];
+      const bool row = item.kind == kSelfPieceRow;
+      const int shape = row ? first.a : first.b;
+      const int other_link = c.shapes_[static_cast<std::size_t>(row ? first.b : first.a)].link;
+      const int other = c.link_ball_of_link_[static_cast<std::size_t>(other_link)];
+      const std::size_t common =
+          common_joints(c.shapes_[static_cast<std::size_t>(shape)].link, other_link);
+      bound = sum(shape_speed(shape, common), ball_speed(other, common));
+      break;
+    }
+    default:  // a self cluster: its bodies are several links each
+      return item.rate;
+  }
+  if (!bound.usable) return item.rate;
+  return std::min(item.rate, bound.speed + 0.5 * half * bound.accel);
+}
+
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_direction(
-    std::size_t pair, const Item& item, const Eigen::Vector3d& normal, double lower) {
+    std::size_t pair, const Item& item, const Eigen::Vector3d& normal, double lower,
+    double pair_rate) {
   const std::size_t n_env = c.environment_pairs_.size();
   int a = 0, b = -1;
   double slab = 0.0, upper = 0.0;
@@ -892,14 +1002,15 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_dir
     slab_bounds(c.shape_of(a), c.shape_pose(a, s), c.shape_of(b), c.shape_pose(b, s), normal, &slab,
                 &upper);
   }
-  const double rate = directional_rate(a, b, normal);
+  // The gap along the normal shrinks no faster than the shapes move.
+  const double rate = std::min(directional_rate(a, b, normal), pair_rate);
   if (slab - half * rate > options.min_clearance) return Outcome::kCertified;
   // Proven over the window either bound gives (the directional one holds within this interval).
   const double reach = lower - options.min_clearance;
-  if (slab > options.min_clearance && rate * reach < item.rate * (slab - options.min_clearance)) {
+  if (slab > options.min_clearance && rate * reach < pair_rate * (slab - options.min_clearance)) {
     keep(item, slab, rate);
   } else {
-    keep(item, lower);
+    keep(item, lower, pair_rate);
   }
   return Outcome::kPending;
 }
@@ -919,13 +1030,9 @@ double CollisionChecker::MotionSearch::directional_rate(int a, int b,
   };
   const std::vector<int>& chain_a = chain_of(a);
   const std::vector<int>* chain_b = b >= 0 ? &chain_of(b) : nullptr;
-  std::size_t common = 0;  // joints above both links move them rigidly together
-  if (chain_b != nullptr) {
-    while (common < chain_a.size() && common < chain_b->size() &&
-           chain_a[common] == (*chain_b)[common]) {
-      ++common;
-    }
-  }
+  const std::size_t common = b >= 0 ? common_joints(c.shapes_[static_cast<std::size_t>(a)].link,
+                                                    c.shapes_[static_cast<std::size_t>(b)].link)
+                                    : 0;
   double rate = 0.0;
   const auto add = [&](const std::vector<int>& chain, int shape) {
     double turning = 0.0;  // summed speeds of the revolute joints passed, per unit t

@@ -1,0 +1,34 @@
+// Speed bounds of a link's points at one configuration of a straight joint motion, and of how
+// fast that speed can change: check_motion's rates from the configuration at an interval's
+// middle instead of the lever arms alone (chain_speed.cpp derives them).
+#pragma once
+
+#include <Eigen/Geometry>
+#include <hullcheck/robot/robot_model.hpp>
+#include <vector>
+
+namespace hullcheck {
+
+/// For a set of points of one link along q(t) = q0 + t dq, relative to the frame that the
+/// joints chain[0, from) move (the world when from = 0): `speed` bounds |dp/dt| at the placed
+/// configuration (m per unit t), `accel` bounds |d^2p/dt^2| at every configuration (m per unit
+/// t^2). Within t in [m - h, m + h] every such point then stays within
+///   |t - m| (speed + h accel / 2)
+/// of where it is at q(m). `usable` is false when a prismatic joint of the chain moves (the
+/// derivation covers turning joints only): use the lever arms' rate then.
+struct ChainSpeed {
+  double speed = 0.0;
+  double accel = 0.0;
+  bool usable = true;
+};
+
+/// The bound for the points within `radius` of `centre` (world, m), points of shapes carried by
+/// the joints `chain` (movable joints from the root down, MotionLevers::link_chains) beyond
+/// chain[from]; `arms[j]` bounds their distance from joint j's axis over every configuration
+/// (a column of CollisionChecker::joint_arms, or the largest of several). `poses`: the model's
+/// link poses at the configuration (world). Allocation-free; a pure function of its inputs.
+ChainSpeed chain_speed(const RobotModel& model, const std::vector<Eigen::Isometry3d>& poses,
+                       const std::vector<int>& chain, std::size_t from, const Eigen::VectorXd& dq,
+                       const double* arms, const Eigen::Vector3d& centre, double radius);
+
+}  // namespace hullcheck
