@@ -8,7 +8,8 @@
 //   v(p) = sum_j w_j u_j x (p - o_j)                                   (j >= from)
 // (the velocity of p minus that of F's point at p; a vector's length does not depend on the
 // frame it is written in). v is affine in p: v(p) = v(c) + W x (p - c) with W = sum_j w_j u_j,
-// so |v(p)| <= |v(c)| + |W| radius for every p within `radius` of c.
+// so |v(p)| <= |v(c)| + |W| radius for every p within `radius` of c, and along a unit vector n
+// (fixed in F), |n . v(p)| <= |n . v(c)| + |n x W| radius (n . (W x r) = (n x W) . r).
 //
 // The change of speed. With o_j taken as the foot of p on axis j (v, and the expression below,
 // do not depend on which point of the axis is taken), |p - o_j| = the distance of p from axis j
@@ -20,7 +21,8 @@
 // at most |W_j| L_j + sum_{i>=j} |w_i| L_i. Hence, with S_j = sum_{i<j} |w_i| >= |W_j|,
 //   |dv/dt| <= sum_j |w_j| (2 S_j L_j + sum_{i>=j} |w_i| L_i) =: accel
 // over every configuration. Within [m - h, m + h], |p(t) - p(m)| <= |t - m| speed + (t - m)^2
-// accel / 2 <= |t - m| (speed + h accel / 2).
+// accel / 2 <= |t - m| (speed + h accel / 2), and its component along n changes by at most
+// |t - m| (along(n) + h accel / 2).
 //
 // Rounding. The terms of v(c) may cancel; its computed length is within about 1e-16 of
 // sum_j |w_j| |c - o_j| of the true one: speed adds 1e-12 of that sum plus the lever rate
@@ -64,7 +66,11 @@ ChainSpeed chain_speed(const RobotModel& model, const std::vector<Eigen::Isometr
     above += std::abs(w);
     below -= std::abs(w) * lever;
   }
-  out.speed = v.norm() + turn.norm() * radius + 1e-12 * (lever_rate + spread);
+  out.velocity = v;
+  out.turn = turn;
+  out.radius = radius;
+  out.slack = 1e-12 * (lever_rate + spread);
+  out.speed = v.norm() + turn.norm() * radius + out.slack;
   out.accel += 1e-12 * above * lever_rate;  // `below`'s rounding
   return out;
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <hullcheck/robot/robot_model.hpp>
 #include <vector>
 
@@ -16,10 +17,23 @@ namespace hullcheck {
 ///   |t - m| (speed + h accel / 2)
 /// of where it is at q(m). `usable` is false when a prismatic joint of the chain moves (the
 /// derivation covers turning joints only): use the lever arms' rate then.
+/// Along a unit direction n (fixed in that frame) the points' component changes at most at
+/// |n . velocity| + |n x turn| radius + slack at the configuration (velocity: the centre's,
+/// turn: the link's angular velocity, both world vectors), and that rate itself by at most
+/// accel per unit t (along()).
 struct ChainSpeed {
   double speed = 0.0;
   double accel = 0.0;
   bool usable = true;
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d turn = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+  double slack = 0.0;  // rounding, m per unit t
+
+  /// The rate at the configuration along unit vector n (see above).
+  double along(const Eigen::Vector3d& n) const {
+    return std::abs(n.dot(velocity)) + n.cross(turn).norm() * radius + slack;
+  }
 };
 
 /// The bound for the points within `radius` of `centre` (world, m), points of shapes carried by

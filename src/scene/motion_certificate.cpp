@@ -210,6 +210,12 @@ struct CollisionChecker::MotionSearch {
   /// (item.rate) and the bound from their speeds at q(m) and how fast those can change
   /// (chain_speed.hpp). Measured (bench_vamp, Panda): ~0.5 of the levers' rate on average.
   double rate_of(const Item& item);
+  /// Robot shape `shape`'s speed bound at q(m) relative to the frame its chain's first `from`
+  /// joints move (chain_speed.hpp).
+  ChainSpeed shape_speed(int shape, std::size_t from);
+  /// The speed bounds of pair `pair`'s shapes (index as pair_distance_below's) relative to their
+  /// links' common ancestor (the world for an environment pair, whose *b is zero).
+  void pair_speeds(std::size_t pair, ChainSpeed* a, ChainSpeed* b);
   /// The distance between a point of each of the pair's shapes at q(m): >= the signed distance.
   double pair_upper_bound(std::size_t pair) const;
   /// A pair within its margin (at `rate`), apart at q(m) along the unit `normal` (from its robot
@@ -919,9 +925,7 @@ double CollisionChecker::MotionSearch::rate_of(const Item& item) {
                        ball_centre, radius);
   };
   const auto shape_speed = [&](int shape, std::size_t from) {
-    const RobotShape& rs = c.shapes_[static_cast<std::size_t>(shape)];
-    return speed(rs.link, from, levers.joint_arms->col(shape).data(), c.center(shape, s),
-                 rs.radius);
+    return this->shape_speed(shape, from);
   };
   const auto ball_speed = [&](int ball, std::size_t from) {
     const auto b = static_cast<std::size_t>(ball);
@@ -948,13 +952,13 @@ double CollisionChecker::MotionSearch::rate_of(const Item& item) {
       break;
     }
     case kEnvironmentPair:
-      bound = shape_speed(c.environment_pairs_[static_cast<std::size_t>(item.index)].shape, 0);
-      break;
     case kSelfPair: {
-      const SelfPair& p = c.self_pairs_[static_cast<std::size_t>(item.index)];
-      const std::size_t common = common_joints(c.shapes_[static_cast<std::size_t>(p.a)].link,
-                                               c.shapes_[static_cast<std::size_t>(p.b)].link);
-      bound = sum(shape_speed(p.a, common), shape_speed(p.b, common));
+      ChainSpeed a, b;
+      pair_speeds(item.kind == kEnvironmentPair
+                      ? static_cast<std::size_t>(item.index)
+                      : c.environment_pairs_.size() + static_cast<std::size_t>(item.index),
+                  &a, &b);
+      bound = sum(a, b);
       break;
     }
     case kSelfBlock: {
@@ -984,6 +988,27 @@ double CollisionChecker::MotionSearch::rate_of(const Item& item) {
   return std::min(item.rate, bound.speed + 0.5 * half * bound.accel);
 }
 
+ChainSpeed CollisionChecker::MotionSearch::shape_speed(int shape, std::size_t from) {
+  const RobotShape& rs = c.shapes_[static_cast<std::size_t>(shape)];
+  return chain_speed(*c.model_, *s.link_poses_in,
+                     levers.link_chains[static_cast<std::size_t>(rs.link)], from, dq,
+                     levers.joint_arms->col(shape).data(), c.center(shape, s), rs.radius);
+}
+
+void CollisionChecker::MotionSearch::pair_speeds(std::size_t pair, ChainSpeed* a, ChainSpeed* b) {
+  const std::size_t n_env = c.environment_pairs_.size();
+  if (pair < n_env) {
+    *a = shape_speed(c.environment_pairs_[pair].shape, 0);
+    *b = ChainSpeed{};  // an obstacle stays
+    return;
+  }
+  const SelfPair& p = c.self_pairs_[pair - n_env];
+  const std::size_t common = common_joints(c.shapes_[static_cast<std::size_t>(p.a)].link,
+                                           c.shapes_[static_cast<std::size_t>(p.b)].link);
+  *a = shape_speed(p.a, common);
+  *b = shape_speed(p.b, common);
+}
+
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_direction(
     std::size_t pair, const Item& item, const Eigen::Vector3d& normal, double lower,
     double pair_rate) {
@@ -1002,8 +1027,22 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_dir
     slab_bounds(c.shape_of(a), c.shape_pose(a, s), c.shape_of(b), c.shape_pose(b, s), normal, &slab,
                 &upper);
   }
-  // The gap along the normal shrinks no faster than the shapes move.
-  const double rate = std::min(directional_rate(a, b, normal), pair_rate);
+  // The gap along the normal shrinks no faster than the shapes move, nor than their points'
+  // components along it change: at q(m) by at most the two shapes' along(normal), the normal
+  // being fixed in their common ancestor's frame (chain_speed.hpp), and within the interval by
+  // at most h accel / 2 more on average over any part [m, m + tau] or [m - tau, m] of it.
+  double rate = std::min(directional_rate(a, b, normal), pair_rate);
+  if (extra == 0.0) {
+    ChainSpeed speed_a, speed_b;
+    pair_speeds(pair, &speed_a, &speed_b);
+    if (speed_a.usable && speed_b.usable) {
+      const double along = std::abs(normal.dot(speed_a.velocity - speed_b.velocity)) +
+                           normal.cross(speed_a.turn).norm() * speed_a.radius +
+                           normal.cross(speed_b.turn).norm() * speed_b.radius + speed_a.slack +
+                           speed_b.slack;
+      rate = std::min(rate, along + 0.5 * half * (speed_a.accel + speed_b.accel));
+    }
+  }
   if (slab - half * rate > options.min_clearance) return Outcome::kCertified;
   // Proven over the window either bound gives (the directional one holds within this interval).
   const double reach = lower - options.min_clearance;

@@ -11,7 +11,8 @@
 // The speed bounds check_motion takes from the configuration at an interval's middle
 // (chain_speed.hpp), the same way: within [m - h, m + h] every point of a shape, of a link ball's
 // link and of a shape group stays within |t - m| (speed + h accel / 2) of where it is at q(m),
-// in the world and, for a pair of links, in their common ancestor's frame.
+// in the world and, for a pair of links, in their common ancestor's frame; along a direction
+// fixed in that frame, within |t - m| (along(n) + h accel / 2).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -239,9 +240,10 @@ void check_levers(const CollisionChecker& checker, int motions, int steps, Sampl
 
 struct SpeedStats {
   int intervals = 0;
-  long checks = 0;     // (bound, point, sample) triples
-  int unusable = 0;    // bounds with a moving prismatic joint (the levers' rate used instead)
-  double worst = 0.0;  // largest displacement / bound seen (<= 1 when the bounds hold)
+  long checks = 0;           // (bound, point, sample) triples
+  int unusable = 0;          // bounds with a moving prismatic joint (the levers' rate used instead)
+  double worst = 0.0;        // largest displacement / bound seen (<= 1 when the bounds hold)
+  double worst_along = 0.0;  // the same along a direction
 };
 
 // Random motions q0 -> q1 (`sample` draws each end) and an interval [m - h, m + h] of each,
@@ -276,6 +278,15 @@ void check_speeds(const CollisionChecker& checker, int motions, int steps, std::
         return;
       }
       const double rate = bound.speed + 0.5 * h * bound.accel;
+      // A random unit direction, fixed in the frame: at q(m) it is `along_world`.
+      Eigen::Vector3d along_world =
+          Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) - Eigen::Vector3d::Constant(0.5);
+      along_world.normalize();
+      const Eigen::Vector3d along_frame =
+          frame < 0 ? along_world
+                    : Eigen::Vector3d(at_m[static_cast<std::size_t>(frame)].linear().transpose() *
+                                      along_world);
+      const double along_rate = bound.along(along_world) + 0.5 * h * bound.accel;
       const auto in_frame = [&](const std::vector<Eigen::Isometry3d>& poses, int link,
                                 const Eigen::Vector3d& p) {
         const Eigen::Vector3d world = poses[static_cast<std::size_t>(link)] * p;
@@ -303,6 +314,14 @@ void check_speeds(const CollisionChecker& checker, int motions, int steps, std::
                 << " m " << m << " h " << h << " t " << ts[static_cast<std::size_t>(k)]
                 << "\nq0 = " << q0.transpose() << "\nq1 = " << q1.transpose();
             if (allowed > 1e-9) stats->worst = std::max(stats->worst, moved / allowed);
+            const double moved_along = std::abs(
+                along_frame.dot(in_frame(samples[static_cast<std::size_t>(k)], link, p) - x_m));
+            ASSERT_LE(moved_along, dt * along_rate * (1.0 + 1e-9) + 1e-12)
+                << what << " along " << along_world.transpose() << " " << model.link(link).name
+                << " shape " << index << " frame " << frame << " m " << m << " h " << h;
+            if (dt * along_rate > 1e-9) {
+              stats->worst_along = std::max(stats->worst_along, moved_along / (dt * along_rate));
+            }
             ++stats->checks;
           }
         }
@@ -341,8 +360,8 @@ void check_speeds(const CollisionChecker& checker, int motions, int steps, std::
 void report(const std::string& id, const SpeedStats& s) {
   std::printf(
       "[ speeds   ] %s: %d intervals, %ld checks, %d bounds with a prismatic joint moving; "
-      "largest displacement / bound %.3f\n",
-      id.c_str(), s.intervals, s.checks, s.unusable, s.worst);
+      "largest displacement / bound %.3f, along a direction %.3f\n",
+      id.c_str(), s.intervals, s.checks, s.unusable, s.worst, s.worst_along);
 }
 
 void report(const std::string& id, const LeverStats& s) {
@@ -458,6 +477,7 @@ TEST(ChainSpeed, BoundsHoldOnTheRobots) {
         &stats);
     report(robot.id, stats);
     EXPECT_GT(stats.worst, 0.3);  // the check sees real motion
+    EXPECT_GT(stats.worst_along, 0.3);
   }
 }
 
@@ -481,6 +501,7 @@ TEST(ChainSpeed, BoundsHoldOnAHandMadeChain) {
       &stats);
   report("hand_made_chain", stats);
   EXPECT_GT(stats.worst, 0.5);
+  EXPECT_GT(stats.worst_along, 0.5);
   EXPECT_GT(stats.unusable, 0);  // the slide's motions fall back
   EXPECT_GT(stats.checks, 0);
 }
