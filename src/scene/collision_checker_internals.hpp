@@ -72,6 +72,9 @@ struct CollisionChecker::Scratch {
   // in which its ball is clear of the current obstacle's box.
   std::vector<double> group_shape_spheres, group_shape_balls;
   std::vector<std::uint8_t> group_shape_clear;
+  // check_motion's sweep: per shape group / self block, the lanes it proved (the lanes still
+  // open when it was tested; 0 for those not reached).
+  std::vector<std::uint8_t> sweep_group_lanes, sweep_block_lanes;
   // check_motion: a shape group's ball's gaps to its obstacles' boxes (test_environment_group).
   std::vector<double> group_gaps;
   std::vector<std::uint8_t> self_balls_apart;  // per self block: lanes with its link balls apart

@@ -124,8 +124,9 @@ struct CollisionChecker::MotionSearch {
 
   MotionCheckResult run();
   /// Appends the root items: per shape group against every obstacle (`environment`), the self
-  /// blocks and clusters (`self`).
-  void add_items(bool environment, bool self);
+  /// blocks and clusters (`self`); with `lanes` (a run of the sweep's), only those the sweep did
+  /// not prove in every one of them (s.sweep_group_lanes, s.sweep_block_lanes).
+  void add_items(bool environment, bool self, std::uint8_t lanes = 0);
   MotionCheckResult run_depth_first();  // locate_contact
   MotionCheckResult run_level_order();  // !locate_contact
   /// The first of the midpoints of levels [first, last] (level k: 2^(k-1) of them), in level
@@ -356,8 +357,8 @@ MotionCheckResult CollisionChecker::MotionSearch::run() {
         run_lanes |= static_cast<std::uint8_t>(1u << end++);
       }
       const auto items_begin = static_cast<int>(s.motion_items.size());
-      add_items((environment_clear & run_lanes) != run_lanes,
-                (self_clear & run_lanes) != run_lanes);
+      add_items((environment_clear & run_lanes) != run_lanes, (self_clear & run_lanes) != run_lanes,
+                run_lanes);
       s.motion_intervals.push_back(
           {k * width, end * width, items_begin, static_cast<int>(s.motion_items.size())});
       k = end;
@@ -371,17 +372,22 @@ MotionCheckResult CollisionChecker::MotionSearch::run() {
   return options.locate_contact ? run_depth_first() : run_level_order();
 }
 
-void CollisionChecker::MotionSearch::add_items(bool environment, bool self) {
+void CollisionChecker::MotionSearch::add_items(bool environment, bool self, std::uint8_t lanes) {
+  // A group or block the sweep proved over each of the run's lanes is proven over the run.
+  const auto proven = [&](const std::vector<std::uint8_t>& by_sweep, std::size_t k) {
+    return lanes != 0 && (by_sweep[k] & lanes) == lanes;
+  };
   // Per shape group, its blocks against every obstacle as one item (test_environment_group).
   for (std::size_t g = 0; g < c.groups_.size() && environment; ++g) {
     if (c.group_block_begin_[g] == c.group_block_begin_[g + 1]) continue;  // no obstacle checked
+    if (proven(s.sweep_group_lanes, g)) continue;
     s.motion_items.push_back(
         {kEnvironmentGroup, static_cast<int>(g),
          levers.group_levers.row(static_cast<Eigen::Index>(g)).dot(abs_dq) + extra});
   }
   if (!self) return;
   for (std::size_t k = 0; k < c.self_blocks_.size(); ++k) {
-    if (c.cluster_of_block_[k] >= 0) continue;
+    if (c.cluster_of_block_[k] >= 0 || proven(s.sweep_block_lanes, k)) continue;
     s.motion_items.push_back(
         {kSelfBlock, static_cast<int>(k), self_block_rate(static_cast<int>(k))});
   }
@@ -394,6 +400,11 @@ void CollisionChecker::MotionSearch::add_items(bool environment, bool self) {
         tables != nullptr && std::any_of(first, first + (cluster.end - cluster.begin), [&](int b) {
           return (*tables)[static_cast<std::size_t>(b)] != nullptr;
         });
+    if (std::all_of(first, first + (cluster.end - cluster.begin), [&](int b) {
+          return proven(s.sweep_block_lanes, static_cast<std::size_t>(b));
+        })) {
+      continue;
+    }
     if (!tabled) {
       s.motion_items.push_back(
           {kSelfCluster, static_cast<int>(k),
@@ -402,6 +413,7 @@ void CollisionChecker::MotionSearch::add_items(bool environment, bool self) {
     }
     for (int i = cluster.begin; i < cluster.end; ++i) {
       const int block = c.cluster_blocks_[static_cast<std::size_t>(i)];
+      if (proven(s.sweep_block_lanes, static_cast<std::size_t>(block))) continue;
       s.motion_items.push_back({kSelfBlock, block, self_block_rate(block)});
     }
   }

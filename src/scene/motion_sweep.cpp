@@ -47,10 +47,12 @@ std::uint8_t CollisionChecker::sweep_environment(const Eigen::Ref<const Eigen::V
   s.ball_box_clear.resize(link_balls_.size() * obstacles);
   std::uint8_t clear_all = 0xff;  // lanes with every block proven so far
   *colliding = 0;
+  s.sweep_group_lanes.assign(groups_.size(), 0);
   // Per group: its links' balls against every box, with the group's rate.
   for (std::size_t g = 0; g < groups_.size() && clear_all != 0; ++g) {
     const int first = group_block_begin_[g], last = group_block_begin_[g + 1];
     if (first == last) continue;
+    const std::uint8_t open = clear_all;  // the lanes this group is tested in
     const double group_slack =
         h * (levers.group_levers.row(static_cast<Eigen::Index>(g)).dot(abs_dq) + extra) +
         min_clearance + kSlack;
@@ -102,6 +104,7 @@ std::uint8_t CollisionChecker::sweep_environment(const Eigen::Ref<const Eigen::V
         clear_all &= shape_clear | clear;
       }
     }
+    s.sweep_group_lanes[g] = open & clear_all;
   }
   return clear_all;
 }
@@ -142,15 +145,20 @@ std::uint8_t CollisionChecker::sweep_self(const Eigen::Ref<const Eigen::VectorXd
   const MotionLevers& levers = motion_levers();
   const double h = 0.5 / kLanes;
   std::uint8_t clear_all = 0xff;
+  s.sweep_block_lanes.assign(self_blocks_.size(), 0);
   for (std::size_t b = 0; b < self_blocks_.size() && clear_all != 0; ++b) {
     const SelfBlock& block = self_blocks_[b];
+    const std::uint8_t open = clear_all;  // the lanes this block is tested in
     const double slack =
         h * (levers.self_block_levers.row(static_cast<Eigen::Index>(b)).dot(abs_dq) + 2.0 * extra) +
         min_clearance + kSlack;
     std::uint8_t apart = 0;
     detail::sphere_pairs_apart(s.ball_centers.data(), self_block_balls_.data() + 2 * b, 1, slack,
                                &apart);
-    if ((clear_all & ~apart) == 0) continue;
+    if ((clear_all & ~apart) == 0) {
+      s.sweep_block_lanes[b] = open;
+      continue;
+    }
     const LinkCover cover_a = link_cover(block.link_a);
     const LinkCover cover_b = link_cover(block.link_b);
     if (cover_a.spheres * cover_b.spheres <= detail::kMaxSpherePairs) {
@@ -171,6 +179,7 @@ std::uint8_t CollisionChecker::sweep_self(const Eigen::Ref<const Eigen::VectorXd
       }
     }
     clear_all &= apart;
+    s.sweep_block_lanes[b] = open & apart;
   }
   return clear_all;
 }
