@@ -31,10 +31,20 @@ struct ChainSpeed {
   double slack = 0.0;  // rounding, m per unit t
 
   /// The rate at the configuration along unit vector n (see above).
-  double along(const Eigen::Vector3d& n) const {
-    return std::abs(n.dot(velocity)) + n.cross(turn).norm() * radius + slack;
-  }
+  double along(const Eigen::Vector3d& n) const;
 };
+
+/// How fast, at the configuration, the points of `a` and those of `b` (bounds relative to the
+/// same frame) can change their components along unit vector n relative to each other: at most
+/// |n . (a.velocity - b.velocity)| + |n x a.turn| a.radius + |n x b.turn| b.radius + slacks.
+inline double relative_along(const ChainSpeed& a, const ChainSpeed& b, const Eigen::Vector3d& n) {
+  return std::abs(n.dot(a.velocity - b.velocity)) + n.cross(a.turn).norm() * a.radius +
+         n.cross(b.turn).norm() * b.radius + a.slack + b.slack;
+}
+
+inline double ChainSpeed::along(const Eigen::Vector3d& n) const {
+  return relative_along(*this, ChainSpeed{}, n);
+}
 
 /// The bound for the points within `radius` of `centre` (world, m), points of shapes carried by
 /// the joints `chain` (movable joints from the root down, MotionLevers::link_chains) beyond

@@ -211,19 +211,26 @@ struct CollisionChecker::MotionSearch {
   /// (item.rate) and the bound from their speeds at q(m) and how fast those can change
   /// (chain_speed.hpp). Measured (bench_vamp, Panda): ~0.5 of the levers' rate on average.
   double rate_of(const Item& item);
-  /// Robot shape `shape`'s speed bound at q(m) relative to the frame its chain's first `from`
-  /// joints move (chain_speed.hpp).
+  /// rate_of for pair `pair` (index as pair_distance_below's) of levers' rate `lever_rate`; *a
+  /// and *b receive its shapes' speed bounds relative to their links' common ancestor (the
+  /// world for an environment pair, whose *b is zero), not usable when the levers' rate holds
+  /// for want of them (a prismatic joint moves).
+  double pair_rate(std::size_t pair, double lever_rate, ChainSpeed* a, ChainSpeed* b);
+  /// The speed bound at q(m) of the points within `radius` of `ball_centre` on model link `link`,
+  /// relative to the frame its chain's first `from` joints move, `arms` their lever arms per
+  /// joint (chain_speed.hpp).
+  ChainSpeed link_speed(int link, std::size_t from, const double* arms,
+                        const Eigen::Vector3d& ball_centre, double radius);
+  /// Robot shape `shape`'s (its ball's).
   ChainSpeed shape_speed(int shape, std::size_t from);
-  /// The speed bounds of pair `pair`'s shapes (index as pair_distance_below's) relative to their
-  /// links' common ancestor (the world for an environment pair, whose *b is zero).
-  void pair_speeds(std::size_t pair, ChainSpeed* a, ChainSpeed* b);
   /// The distance between a point of each of the pair's shapes at q(m): >= the signed distance.
   double pair_upper_bound(std::size_t pair) const;
   /// A pair within its margin (at `rate`), apart at q(m) along the unit `normal` (from its robot
   /// shape, or its first shape, towards the other): certified, or kept, by how fast its shapes
-  /// can approach along that direction (directional_rate); kPending when nothing is gained.
+  /// can approach along that direction (directional_rate, and their speed bounds `a`, `b` from
+  /// pair_rate when usable); kPending when nothing is gained.
   Outcome test_direction(std::size_t pair, const Item& item, const Eigen::Vector3d& normal,
-                         double lower, double rate);
+                         double lower, double rate, const ChainSpeed& a, const ChainSpeed& b);
   /// A bound on how fast, per unit t within the interval, the gap between shapes a and b (b < 0:
   /// an obstacle) along the unit direction n can shrink, n being fixed in the frame of their
   /// links' deepest common ancestor (the world for an obstacle). See the file comment.
@@ -892,7 +899,8 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pai
     std::size_t pair, const Item& item) {
   const double gap = c.pair_ball_gap(pair, s);
   if (gap > margin(item.rate)) return Outcome::kCertified;
-  const double rate = rate_of(item);
+  ChainSpeed speed_a, speed_b;
+  const double rate = pair_rate(pair, item.rate, &speed_a, &speed_b);
   const double inflated = margin(rate);
   if (gap > inflated) return Outcome::kCertified;
   // Where even an upper bound on the distance (from a point of one shape to a point of the
@@ -913,7 +921,8 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pai
           : exact_outcome(r, rate);
   if (outcome == Outcome::kPending && !hopeless && r.status == Status::kConverged &&
       r.signed_distance > options.min_clearance) {
-    return test_direction(pair, item, r.normal, std::max(gap, r.signed_distance), rate);
+    return test_direction(pair, item, r.normal, std::max(gap, r.signed_distance), rate, speed_a,
+                          speed_b);
   }
   if (outcome == Outcome::kPending) {
     // A converged distance or a proven bound (kAboveCutoff); otherwise only the balls' gap.
@@ -928,21 +937,10 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_pai
 
 double CollisionChecker::MotionSearch::rate_of(const Item& item) {
   if (extra != 0.0) return item.rate;  // a prismatic joint moves: the levers' rate
-  // The speed bound of a ball of model link `link`, relative to the frame its chain's first
-  // `from` joints move.
-  const auto speed = [&](int link, std::size_t from, const double* arms,
-                         const Eigen::Vector3d& ball_centre, double radius) {
-    return chain_speed(*c.model_, *s.link_poses_in,
-                       levers.link_chains[static_cast<std::size_t>(link)], from, dq, arms,
-                       ball_centre, radius);
-  };
-  const auto shape_speed = [&](int shape, std::size_t from) {
-    return this->shape_speed(shape, from);
-  };
   const auto ball_speed = [&](int ball, std::size_t from) {
     const auto b = static_cast<std::size_t>(ball);
-    return speed(c.link_balls_[b].link, from, levers.link_ball_arms.col(ball).data(),
-                 s.link_centers[b], c.link_balls_[b].radius);
+    return link_speed(c.link_balls_[b].link, from, levers.link_ball_arms.col(ball).data(),
+                      s.link_centers[b], c.link_balls_[b].radius);
   };
   const auto link_of_ball = [&](int ball) {
     return c.link_balls_[static_cast<std::size_t>(ball)].link;
@@ -958,20 +956,18 @@ double CollisionChecker::MotionSearch::rate_of(const Item& item) {
           item.kind == kEnvironmentGroup ? item.index
                                          : c.blocks_[static_cast<std::size_t>(item.index)].group);
       if (levers.group_link[g] < 0) return item.rate;
-      bound =
-          speed(levers.group_link[g], 0, levers.group_arms.col(static_cast<Eigen::Index>(g)).data(),
-                s.group_centers[g], s.group_radii[g]);
+      bound = link_speed(levers.group_link[g], 0,
+                         levers.group_arms.col(static_cast<Eigen::Index>(g)).data(),
+                         s.group_centers[g], s.group_radii[g]);
       break;
     }
     case kEnvironmentPair:
     case kSelfPair: {
       ChainSpeed a, b;
-      pair_speeds(item.kind == kEnvironmentPair
-                      ? static_cast<std::size_t>(item.index)
-                      : c.environment_pairs_.size() + static_cast<std::size_t>(item.index),
-                  &a, &b);
-      bound = sum(a, b);
-      break;
+      return pair_rate(item.kind == kEnvironmentPair
+                           ? static_cast<std::size_t>(item.index)
+                           : c.environment_pairs_.size() + static_cast<std::size_t>(item.index),
+                       item.rate, &a, &b);
     }
     case kSelfBlock: {
       const SelfBlock& block = c.self_blocks_[static_cast<std::size_t>(item.index)];
@@ -1000,30 +996,45 @@ double CollisionChecker::MotionSearch::rate_of(const Item& item) {
   return std::min(item.rate, bound.speed + 0.5 * half * bound.accel);
 }
 
-ChainSpeed CollisionChecker::MotionSearch::shape_speed(int shape, std::size_t from) {
-  const RobotShape& rs = c.shapes_[static_cast<std::size_t>(shape)];
-  return chain_speed(*c.model_, *s.link_poses_in,
-                     levers.link_chains[static_cast<std::size_t>(rs.link)], from, dq,
-                     levers.joint_arms->col(shape).data(), c.center(shape, s), rs.radius);
-}
-
-void CollisionChecker::MotionSearch::pair_speeds(std::size_t pair, ChainSpeed* a, ChainSpeed* b) {
+double CollisionChecker::MotionSearch::pair_rate(std::size_t pair, double lever_rate, ChainSpeed* a,
+                                                 ChainSpeed* b) {
+  *b = ChainSpeed{};   // an obstacle stays
+  if (extra != 0.0) {  // a prismatic joint moves: the levers' rate
+    a->usable = false;
+    return lever_rate;
+  }
   const std::size_t n_env = c.environment_pairs_.size();
   if (pair < n_env) {
     *a = shape_speed(c.environment_pairs_[pair].shape, 0);
-    *b = ChainSpeed{};  // an obstacle stays
-    return;
+  } else {
+    const SelfPair& p = c.self_pairs_[pair - n_env];
+    const std::size_t common = common_joints(c.shapes_[static_cast<std::size_t>(p.a)].link,
+                                             c.shapes_[static_cast<std::size_t>(p.b)].link);
+    *a = shape_speed(p.a, common);
+    *b = shape_speed(p.b, common);
   }
-  const SelfPair& p = c.self_pairs_[pair - n_env];
-  const std::size_t common = common_joints(c.shapes_[static_cast<std::size_t>(p.a)].link,
-                                           c.shapes_[static_cast<std::size_t>(p.b)].link);
-  *a = shape_speed(p.a, common);
-  *b = shape_speed(p.b, common);
+  if (!a->usable || !b->usable) return lever_rate;
+  return std::min(lever_rate, a->speed + b->speed + 0.5 * half * (a->accel + b->accel));
+}
+
+ChainSpeed CollisionChecker::MotionSearch::link_speed(int link, std::size_t from,
+                                                      const double* arms,
+                                                      const Eigen::Vector3d& ball_centre,
+                                                      double radius) {
+  return chain_speed(*c.model_, *s.link_poses_in,
+                     levers.link_chains[static_cast<std::size_t>(link)], from, dq, arms,
+                     ball_centre, radius);
+}
+
+ChainSpeed CollisionChecker::MotionSearch::shape_speed(int shape, std::size_t from) {
+  const RobotShape& rs = c.shapes_[static_cast<std::size_t>(shape)];
+  return link_speed(rs.link, from, levers.joint_arms->col(shape).data(), c.center(shape, s),
+                    rs.radius);
 }
 
 CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_direction(
     std::size_t pair, const Item& item, const Eigen::Vector3d& normal, double lower,
-    double pair_rate) {
+    double pair_rate, const ChainSpeed& speed_a, const ChainSpeed& speed_b) {
   const std::size_t n_env = c.environment_pairs_.size();
   int a = 0, b = -1;
   double slab = 0.0, upper = 0.0;
@@ -1044,16 +1055,9 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_dir
   // being fixed in their common ancestor's frame (chain_speed.hpp), and within the interval by
   // at most h accel / 2 more on average over any part [m, m + tau] or [m - tau, m] of it.
   double rate = std::min(directional_rate(a, b, normal), pair_rate);
-  if (extra == 0.0) {
-    ChainSpeed speed_a, speed_b;
-    pair_speeds(pair, &speed_a, &speed_b);
-    if (speed_a.usable && speed_b.usable) {
-      const double along = std::abs(normal.dot(speed_a.velocity - speed_b.velocity)) +
-                           normal.cross(speed_a.turn).norm() * speed_a.radius +
-                           normal.cross(speed_b.turn).norm() * speed_b.radius + speed_a.slack +
-                           speed_b.slack;
-      rate = std::min(rate, along + 0.5 * half * (speed_a.accel + speed_b.accel));
-    }
+  if (speed_a.usable && speed_b.usable) {
+    rate = std::min(rate, relative_along(speed_a, speed_b, normal) +
+                              0.5 * half * (speed_a.accel + speed_b.accel));
   }
   if (slab - half * rate > options.min_clearance) return Outcome::kCertified;
   // Proven over the window either bound gives (the directional one holds within this interval).

@@ -380,8 +380,9 @@ AllowedCollisionMatrix nothing_allowed(const RobotModel& model) {
 // Chains where the exact parts of the bounds matter: offset and tilted axes, a fixed joint
 // between two revolute ones, a prismatic joint in the middle, a mimic joint turning the other
 // way, and boxes, spheres and cylinders off their links' origins.
-const char* hand_made_chain_urdf() {
-  return R"(<robot name="hand_made_chain">
+std::shared_ptr<const RobotModel> hand_made_chain() {
+  return std::make_shared<const RobotModel>(
+      RobotModel::from_urdf_string(R"(<robot name="hand_made_chain">
   <link name="base"/>
   <link name="upper"><collision><origin xyz="0.3 0.05 0.1" rpy="0.3 0.2 0.1"/>
     <geometry><box size="0.4 0.05 0.08"/></geometry></collision></link>
@@ -421,7 +422,8 @@ const char* hand_made_chain_urdf() {
   </joint>
   <link name="twin"><collision><origin xyz="0 0 0.2"/>
     <geometry><box size="0.05 0.05 0.3"/></geometry></collision></link>
-</robot>)";
+</robot>)",
+                                   ".", {}, "hand_made_chain.urdf"));
 }
 
 TEST(MotionLevers, BoundEveryShapeAndPairOnTheRobots) {
@@ -446,8 +448,7 @@ TEST(MotionLevers, BoundEveryShapeAndPairOnTheRobots) {
 }
 
 TEST(MotionLevers, BoundEveryShapeOnHandMadeChains) {
-  const auto model = std::make_shared<const RobotModel>(
-      RobotModel::from_urdf_string(hand_made_chain_urdf(), ".", {}, "hand_made_chain.urdf"));
+  const auto model = hand_made_chain();
   const CollisionChecker checker(model, nothing_allowed(*model), PlanningScene{});
   std::mt19937_64 rng(5);
   LeverStats stats;
@@ -483,8 +484,7 @@ TEST(ChainSpeed, BoundsHoldOnTheRobots) {
 
 // The hand-made chain (the bound gives way to the levers' rate while its prismatic joint moves).
 TEST(ChainSpeed, BoundsHoldOnAHandMadeChain) {
-  const auto model = std::make_shared<const RobotModel>(
-      RobotModel::from_urdf_string(hand_made_chain_urdf(), ".", {}, "hand_made_chain.urdf"));
+  const auto model = hand_made_chain();
   const CollisionChecker checker(model, nothing_allowed(*model), PlanningScene{});
   const int slide = model->joint(model->joint_index("extend")).variable;
   std::mt19937_64 rng(9);
