@@ -158,6 +158,14 @@ struct CollisionChecker::SelfTable : JointGrid {
   // A pair with an unmarked shape is apart by more than kTableSlack everywhere in the cell.
   // Stored before the cell's bounds (release), read after them (acquire).
   std::unique_ptr<std::atomic<std::uint64_t>[]> near_shapes;
+  /// Asks for cell(q)'s entries ahead of a lookup: the tables (tens of megabytes on a robot
+  /// with decomposed links) are read at random cells, and each lookup would miss the cache.
+  void prefetch(const double* q) const {
+    const long c = cell(q, false);
+    if (c < 0) return;
+    __builtin_prefetch(&bounds[static_cast<std::size_t>(c)]);
+    if (near_shapes) __builtin_prefetch(&near_shapes[static_cast<std::size_t>(c)]);
+  }
   // Once every cell is measured (measure_self_tables): per level k = 1, 2, ... (minima[k - 1]),
   // the smallest lower bound over each aligned square of 2^k cells per keying value, and the
   // level's size per value. Read only when `summarized`.

@@ -187,6 +187,21 @@ bool CollisionChecker::is_valid_at(const std::vector<Eigen::Isometry3d>& link_po
 }
 
 bool CollisionChecker::placed_is_valid(Scratch& s) const {
+  // The table cells of the self blocks whose links' balls meet, fetched while the environment
+  // blocks are tested. Measured (bench_vamp, UR5: 4M cells, 64 MB): a lookup cost ~220 cycles.
+  const std::vector<SelfTable*>* tables = s.q == nullptr ? nullptr : self_block_tables();
+  for (std::size_t b = 0; tables != nullptr && b < self_blocks_.size(); ++b) {
+    const SelfTable* table = (*tables)[b];
+    if (table == nullptr) continue;
+    const SelfBlock& block = self_blocks_[b];
+    const double reach = link_balls_[static_cast<std::size_t>(block.link_a)].radius +
+                         link_balls_[static_cast<std::size_t>(block.link_b)].radius;
+    if ((s.link_centers[static_cast<std::size_t>(block.link_a)] -
+         s.link_centers[static_cast<std::size_t>(block.link_b)])
+            .squaredNorm() <= reach * reach) {
+      table->prefetch(s.q);
+    }
+  }
   for (const EnvironmentBlock& block : blocks_) {
     if (environment_block_overlaps(block, s)) return false;
   }

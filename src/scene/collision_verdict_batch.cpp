@@ -194,7 +194,20 @@ void CollisionChecker::is_valid_block(const Eigen::Ref<const Eigen::MatrixXd>& c
   s.self_balls_apart.resize(self_blocks_.size());
   detail::sphere_pairs_apart(s.ball_centers.data(), self_block_balls_.data(), self_blocks_.size(),
                              kSlack, s.self_balls_apart.data());
+  // The table cells of a block's lanes whose balls meet are fetched one block ahead of their
+  // lookups (random cells of tables of up to 64 MB: each lookup would miss the cache).
+  const std::vector<SelfTable*>* tables = self_block_tables();
+  const auto prefetch_cells = [&](std::size_t b) {
+    const SelfTable* table = tables == nullptr || b >= self_blocks_.size() ? nullptr : (*tables)[b];
+    if (table == nullptr) return;
+    const std::uint8_t near = static_cast<std::uint8_t>(~s.self_balls_apart[b] & lanes_in_use);
+    for (int k = 0; k < count; ++k) {
+      if (near & (1u << k)) table->prefetch(configurations.col(first + k).data());
+    }
+  };
+  prefetch_cells(0);
   for (std::size_t b = 0; b < self_blocks_.size(); ++b) {
+    prefetch_cells(b + 1);
     const SelfBlock& block = self_blocks_[b];
     const auto ia = static_cast<std::size_t>(block.link_a);
     const auto ib = static_cast<std::size_t>(block.link_b);
