@@ -39,8 +39,8 @@ struct CollisionChecker::Scratch {
   std::vector<Eigen::Vector3d> group_centers;
   std::vector<double> group_radii;
   std::vector<Eigen::Vector3d> link_centers;  // per link_balls_ entry, model frame
-  // is_valid: per shape, the stamp of the query and self block for which it was found to meet
-  // the other link's hull (pieces that do not cannot meet any of that link's pieces).
+  // is_valid: per shape, whether it meets the other link's hull in the self block query
+  // stamped there (pieces that do not cannot meet any of that link's pieces): piece_meets_hull.
   std::vector<std::uint64_t> meets_other;
   // is_valid: per self cluster, the placement (stamp) bodies_apart last answered for, and its
   // answer.

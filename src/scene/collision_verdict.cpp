@@ -46,24 +46,24 @@ namespace {
   return false;
 }
 
-bool CollisionChecker::mark_pieces_meeting(int link_ball, int other_ball, const Shape& other,
-                                           const Eigen::Isometry3d& other_pose, std::uint64_t mark,
-                                           Scratch& s) const {
-  bool any = false;
-  const int l = link_balls_[static_cast<std::size_t>(link_ball)].link;
-  // The other link's ball contains its hull: a piece whose ball misses it misses the hull.
-  const Eigen::Vector3d& other_center = s.link_centers[static_cast<std::size_t>(other_ball)];
-  const double other_radius = link_balls_[static_cast<std::size_t>(other_ball)].radius;
-  for (int sh = shape_begin_[static_cast<std::size_t>(l)];
-       sh < shape_begin_[static_cast<std::size_t>(l) + 1]; ++sh) {
-    const double reach = shapes_[static_cast<std::size_t>(sh)].radius + other_radius;
-    if ((center(sh, s) - other_center).squaredNorm() > reach * reach) continue;
-    if (intersect(shape_of(sh), shape_pose(sh, s), other, other_pose)) {
-      s.meets_other[static_cast<std::size_t>(sh)] = mark;
-      any = true;
-    }
+bool CollisionChecker::piece_meets_hull(int shape, int other_ball, const Shape& other,
+                                        const Eigen::Isometry3d& other_pose, std::uint64_t mark,
+                                        Scratch& s) const {
+  // s.meets_other[shape]: `mark` when it meets, mark | kMisses when it does not, else untested
+  // (marks are below 2^63: a stamp shifted by 20 bits).
+  constexpr std::uint64_t kMisses = std::uint64_t{1} << 63;
+  std::uint64_t& known = s.meets_other[static_cast<std::size_t>(shape)];
+  if ((known & ~kMisses) != mark) {
+    // The other link's ball contains its hull: a piece whose ball misses it misses the hull.
+    const double reach = shapes_[static_cast<std::size_t>(shape)].radius +
+                         link_balls_[static_cast<std::size_t>(other_ball)].radius;
+    const bool meets =
+        (center(shape, s) - s.link_centers[static_cast<std::size_t>(other_ball)]).squaredNorm() <=
+            reach * reach &&
+        intersect(shape_of(shape), shape_pose(shape, s), other, other_pose);
+    known = meets ? mark : mark | kMisses;
   }
-  return any;
+  return known == mark;
 }
 
 [[gnu::always_inline]] inline bool CollisionChecker::self_block_overlaps(const SelfBlock& block,
@@ -97,8 +97,14 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, int other_ball, const 
   const int cluster = cluster_of_block_[static_cast<std::size_t>(&block - self_blocks_.data())];
   if (cluster >= 0 && many_blocks(cluster) && bodies_apart(cluster, s)) return false;
   const NearShapeBits bits = near_shape_bits(block);
-  // Non-zero when the pieces meeting the other link's hull are marked with it (below).
+  // Non-zero when a pair's pieces are tested against the other link's hull first (below).
   std::uint64_t mark = 0;
+  struct {
+    const Shape* hull_a;
+    const Eigen::Isometry3d* pose_a;
+    const Shape* hull_b;
+    const Eigen::Isometry3d* pose_b;
+  } hulls_of{};
   if (!single && near == kAllShapesNear) {
     // Links that are one shape or one decomposed mesh: their hulls first.
     const int bound_a = link_balls_[static_cast<std::size_t>(block.link_a)].bound;
@@ -110,29 +116,28 @@ bool CollisionChecker::mark_pieces_meeting(int link_ball, int other_ball, const 
       const Eigen::Isometry3d& pose_b = shape_pose(bound_b, s);
       if (!intersect(hull_a, pose_a, hull_b, pose_b)) return false;
       if (block.end - block.begin > kGroupSize) {
-        // Many piece pairs: each piece against the other link's hull first; only pieces
-        // meeting it can meet a piece of that link. A mark is this query and block's stamp.
+        // Many piece pairs: a pair is tested only when each of its pieces meets the other
+        // link's hull (a piece clear of it is clear of that link's pieces), each piece tested
+        // once, when a pair first needs it. A mark is this query and block's stamp. Measured
+        // (bench_vamp, UR5, colliding blocks of decomposed links): testing every piece first
+        // took 25-50 piece tests before the one or two pair tests that found the contact.
         mark = (s.stamp << 20) + static_cast<std::uint64_t>(&block - self_blocks_.data()) + 1;
-        if (!mark_pieces_meeting(block.link_a, block.link_b, hull_b, pose_b, mark, s)) {
-          return false;
-        }
-        if (!mark_pieces_meeting(block.link_b, block.link_a, hull_a, pose_a, mark, s)) {
-          return false;
-        }
+        hulls_of = {&hull_a, &pose_a, &hull_b, &pose_b};
       }
     }
   }
   for (int k = block.begin; k < block.end; ++k) {
     const SelfPair& p = self_pairs_[static_cast<std::size_t>(k)];
     if (near != kAllShapesNear && !bits.both(near, p)) continue;  // apart by the table
-    if (mark != 0 && (s.meets_other[static_cast<std::size_t>(p.a)] != mark ||
-                      s.meets_other[static_cast<std::size_t>(p.b)] != mark)) {
-      continue;  // one of the two pieces is clear of the other link's hull
-    }
     if (!single) {
       const double pair_reach = shapes_[static_cast<std::size_t>(p.a)].radius +
                                 shapes_[static_cast<std::size_t>(p.b)].radius;
       if ((center(p.a, s) - center(p.b, s)).squaredNorm() > pair_reach * pair_reach) continue;
+    }
+    if (mark != 0 &&
+        (!piece_meets_hull(p.a, block.link_b, *hulls_of.hull_b, *hulls_of.pose_b, mark, s) ||
+         !piece_meets_hull(p.b, block.link_a, *hulls_of.hull_a, *hulls_of.pose_a, mark, s))) {
+      continue;  // one of the two pieces is clear of the other link's hull
     }
     if (intersect(shape_of(p.a), shape_pose(p.a, s), shape_of(p.b), shape_pose(p.b, s))) {
       return true;

@@ -436,11 +436,11 @@ class CollisionChecker {
     const SelfCluster& c = self_clusters_[static_cast<std::size_t>(cluster)];
     return c.end - c.begin > kGroupSize;
   }
-  // Marks (s.meets_other = mark) the shapes of link ball `link_ball` meeting `other` (link ball
-  // `other_ball`'s hull) at its pose; true when any does.
-  bool mark_pieces_meeting(int link_ball, int other_ball, const Shape& other,
-                           const Eigen::Isometry3d& other_pose, std::uint64_t mark,
-                           Scratch& s) const;
+  // Whether robot shape `shape` meets `other` (the hull of link ball `other_ball`, the other
+  // link of its self block) at its pose; tested once per block query, whose stamp is `mark`
+  // (s.meets_other).
+  bool piece_meets_hull(int shape, int other_ball, const Shape& other,
+                        const Eigen::Isometry3d& other_pose, std::uint64_t mark, Scratch& s) const;
   void place(const std::vector<Eigen::Isometry3d>& link_poses, Scratch& s) const;
   const Eigen::Isometry3d& shape_pose(int shape, Scratch& s) const;
   /// Centre (model frame) of robot shape `shape`'s ball at the current query's poses.
