@@ -404,8 +404,14 @@ bool CollisionChecker::SelfTable::walk(const double* q0, const double* dq, doubl
   if (reached != nullptr) *reached = t0;
   // Cell coordinates u_d(t) = (x_d(t) - lower_d) * cells_per_unit_d along the motion, walked
   // from t0 to t1 one cell boundary at a time (the dimension whose next boundary comes first).
-  int index[kMaxGridValues] = {0, 0, 0};
-  double next[kMaxGridValues];  // t of the next boundary per dimension
+  // The walk's position: its cell's indices and the t of the next boundary per dimension.
+  struct Cursor {
+    int index[kMaxGridValues] = {0, 0, 0};
+    double next[kMaxGridValues] = {0.0, 0.0, 0.0};
+  };
+  Cursor at;
+  int* index = at.index;
+  double* next = at.next;
   double step[kMaxGridValues];  // t between boundaries
   int dir[kMaxGridValues];
   double crossings = 1.0;
@@ -444,31 +450,53 @@ bool CollisionChecker::SelfTable::walk(const double* q0, const double* dq, doubl
       next[d] = t0 + (u - index[d]) * step[d];
     }
   }
-  double entered = t0;  // where the walk entered the current cell
-  for (int visited = 0; visited < max_cells; ++visited) {
+  const auto cell_of = [&](const Cursor& c) {
     long cell = 0;
-    for (int d = 0; d < dims; ++d) cell = cell * cells[d] + index[d];
-    if (!visit(static_cast<std::size_t>(cell))) {
-      if (reached != nullptr) *reached = entered;
-      return false;
-    }
+    for (int d = 0; d < dims; ++d) cell = cell * cells[d] + c.index[d];
+    return static_cast<std::size_t>(cell);
+  };
+  // Into the next cell; false (c unchanged) when the walk ends in this one. *entered: where.
+  const auto advance = [&](Cursor& c, double* entered) {
     int d_next = -1;
     for (int d = 0; d < dims; ++d) {
-      if (dir[d] != 0 && (d_next < 0 || next[d] < next[d_next])) d_next = d;
+      if (dir[d] != 0 && (d_next < 0 || c.next[d] < c.next[d_next])) d_next = d;
     }
-    if (d_next < 0 || next[d_next] >= t1) {
-      if (reached != nullptr) *reached = t1;
-      return true;
-    }
-    entered = next[d_next];
-    int& i = index[d_next];
+    if (d_next < 0 || c.next[d_next] >= t1) return false;
+    *entered = c.next[d_next];
+    int& i = c.index[d_next];
     i += dir[d_next];
     if (wraps[d_next]) {
       i = (i + cells[d_next]) % cells[d_next];
     } else {
       i = std::clamp(i, 0, cells[d_next] - 1);  // only at the grid's edge, by rounding
     }
-    next[d_next] += step[d_next];
+    c.next[d_next] += step[d_next];
+    return true;
+  };
+  // A second cursor kAhead cells ahead asks for its cells' bounds before they are visited (the
+  // cells of a walk lie far apart in memory; each visit would wait for its cache miss).
+  // Measured (bench_vamp, UR5: 237k walks, 28 cells each): 81 -> 62-65 cycles per cell.
+  constexpr int kAhead = 8;
+  Cursor ahead = at;
+  double unused = 0.0;
+  bool ahead_open = true;
+  for (int k = 0; k < kAhead && ahead_open; ++k) {
+    ahead_open = advance(ahead, &unused);
+    if (ahead_open) __builtin_prefetch(&bounds[cell_of(ahead)]);
+  }
+  double entered = t0;  // where the walk entered the current cell
+  for (int visited = 0; visited < max_cells; ++visited) {
+    if (!visit(cell_of(at))) {
+      if (reached != nullptr) *reached = entered;
+      return false;
+    }
+    if (!advance(at, &entered)) {
+      if (reached != nullptr) *reached = t1;
+      return true;
+    }
+    if (ahead_open && (ahead_open = advance(ahead, &unused))) {
+      __builtin_prefetch(&bounds[cell_of(ahead)]);
+    }
   }
   if (reached != nullptr) *reached = entered;
   return false;
