@@ -16,7 +16,8 @@
 // every ball test adds.
 //
 // Collisions. A lane whose shape's inner ball reaches more than kSlack into a box obstacle (the
-// box is the obstacle itself) collides there: is_valid_batch's proof.
+// box is the obstacle itself) collides there: is_valid_batch's proof. The first such shape ends
+// the sweep.
 #include <cstdint>
 #include <hullcheck/scene/collision_checker.hpp>
 
@@ -100,6 +101,11 @@ std::uint8_t CollisionChecker::sweep_environment(const Eigen::Ref<const Eigen::V
               inner_[static_cast<std::size_t>(shape)].data(), 1, inner);
           *colliding |=
               detail::spheres_in_box(inner, 1, box_values_.data() + o * detail::kBoxValues, kSlack);
+          // The motion collides: the rest would only look for more contacts. Measured
+          // (bench_vamp, 30 Panda / 10 UR5 problems per family, cycle counters, two
+          // alternations): motions the sweep proves colliding 5.8-6.3k -> 4.1k cycles (Panda),
+          // 13.8-15.4k -> 8.6-8.8k (UR5).
+          if (*colliding != 0) return 0;
         }
         clear_all &= shape_clear | clear;
       }

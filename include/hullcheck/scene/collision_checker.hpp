@@ -402,8 +402,9 @@ class CollisionChecker {
   /// (motion_sweep.cpp): returns the lanes k whose interval [k, k + 1] / kPoseBlockLanes the
   /// shapes' volumes at its middle prove clear of every obstacle by more than min_clearance;
   /// *colliding receives lanes proven in collision at their middle (inner balls in a box
-  /// obstacle, within the blocks tested before every lane had failed). `extra`: the prismatic
-  /// excess per unit t. Fills s.motion_probes and the block scratch (place_block).
+  /// obstacle, within the blocks tested before every lane had failed): the first shape proving
+  /// any ends the sweep (0 returned). `extra`: the prismatic excess per unit t. Fills
+  /// s.motion_probes and the block scratch (place_block).
   std::uint8_t sweep_environment(const Eigen::Ref<const Eigen::VectorXd>& q0,
                                  const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_dq,
                                  double extra, double min_clearance, std::uint8_t* colliding,
