@@ -410,14 +410,12 @@ bool CollisionChecker::SelfTable::walk(const double* q0, const double* dq, doubl
     double next[kMaxGridValues] = {0.0, 0.0, 0.0};
   };
   Cursor at;
-  int* index = at.index;
-  double* next = at.next;
   double step[kMaxGridValues];  // t between boundaries
   int dir[kMaxGridValues];
   double crossings = 1.0;
   for (int d = 0; d < dims; ++d) {
     const int v = variables[d];
-    next[d] = std::numeric_limits<double>::infinity();
+    at.next[d] = std::numeric_limits<double>::infinity();
     step[d] = 0.0;
     dir[d] = 0;
     if (cells_per_unit[d] == 0.0) {  // a value without range: it must stay at it
@@ -435,7 +433,7 @@ bool CollisionChecker::SelfTable::walk(const double* q0, const double* dq, doubl
       // A walk as far as it goes: up to where the value leaves the grid.
       t1 = std::min(t1, t0 + ((du > 0.0 ? cells[d] : 0.0) - u) / du);
     }
-    index[d] = std::min(static_cast<int>(u), cells[d] - 1);
+    at.index[d] = std::min(static_cast<int>(u), cells[d] - 1);
     // The cells crossed are at most one plus the boundaries crossed in each dimension: too
     // many, and nothing is visited (a walk as far as it goes stops at max_cells).
     crossings += std::abs(du) * (t1 - t0) + 1.0;
@@ -443,11 +441,11 @@ bool CollisionChecker::SelfTable::walk(const double* q0, const double* dq, doubl
     if (du > 0.0) {
       dir[d] = 1;
       step[d] = 1.0 / du;
-      next[d] = t0 + (index[d] + 1 - u) * step[d];
+      at.next[d] = t0 + (at.index[d] + 1 - u) * step[d];
     } else if (du < 0.0) {
       dir[d] = -1;
       step[d] = -1.0 / du;
-      next[d] = t0 + (u - index[d]) * step[d];
+      at.next[d] = t0 + (u - at.index[d]) * step[d];
     }
   }
   const auto cell_of = [&](const Cursor& c) {
