@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "collision_checker_internals.hpp"
+#include "sphere_box_rows.hpp"
 
 namespace hullcheck {
 namespace {
@@ -70,6 +71,11 @@ CollisionChecker::Scratch& CollisionChecker::scratch() const {
     s.group_radii.resize(groups_.size());
   }
   if (s.link_centers.size() < link_balls_.size()) s.link_centers.resize(link_balls_.size());
+  const std::size_t box_columns = detail::box_rows_padded(boxes_.size());
+  if (s.box_gaps.size() < box_columns) {
+    s.box_gaps.resize(box_columns);
+    s.boxes_clear.resize((box_columns + 63) / 64);
+  }
   const std::size_t pairs = self_pairs_.size() + environment_pairs_.size();
   if (s.lower_bounds.size() < pairs) {
     s.lower_bounds.resize(pairs);
@@ -300,6 +306,7 @@ void CollisionChecker::build_environment_pairs(
     for (int i = 0; i < 3; ++i) box_values_.push_back(box.center[i]);
     for (int i = 0; i < 3; ++i) box_values_.push_back(box.half_extents[i]);
   }
+  box_rows_ = detail::pack_box_rows(box_values_.data(), boxes_.size());
   group_block_begin_.assign(1, 0);
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     for (int o = 0; o < static_cast<int>(scene_.obstacles.size()); ++o) {

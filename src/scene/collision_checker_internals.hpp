@@ -21,6 +21,10 @@ namespace hullcheck {
 Eigen::Vector3d point_inside(const Shape& shape);
 
 struct CollisionChecker::Scratch {
+  // One shape group's ball against every obstacle box (sphere_box_rows.hpp): the boxes it is
+  // clear of (bits), its gaps to them (m).
+  std::vector<std::uint64_t> boxes_clear;
+  std::vector<double> box_gaps;
   std::vector<Eigen::Isometry3d> link_poses;
   std::vector<Eigen::Isometry3d> shape_poses;
   std::vector<Eigen::Vector3d> centers;

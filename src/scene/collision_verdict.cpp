@@ -5,6 +5,7 @@
 #include <hullcheck/scene/collision_checker.hpp>
 
 #include "collision_checker_internals.hpp"
+#include "sphere_box_rows.hpp"
 
 namespace hullcheck {
 
@@ -21,6 +22,10 @@ namespace {
   return (local.cwiseAbs() - half_extents).cwiseMax(0.0).squaredNorm() > radius * radius;
 }
 
+// A group ball is culled when clear of a box by more than this (m): far above the SIMD test's
+// rounding (a few ulps of the coordinates), so a culled block is clear whatever the rounding.
+constexpr double kBallSlack = 1e-9;
+
 }  // namespace
 
 [[gnu::always_inline]] inline bool CollisionChecker::environment_block_overlaps(
@@ -32,6 +37,16 @@ namespace {
   };
   const auto g = static_cast<std::size_t>(block.group);
   if (block.end - block.begin > 1 && clear(s.group_centers[g], s.group_radii[g])) return false;
+  return environment_block_shapes_overlap(block, s);
+}
+
+[[gnu::always_inline]] inline bool CollisionChecker::environment_block_shapes_overlap(
+    const EnvironmentBlock& block, Scratch& s) const {
+  const ObstacleBox& box = boxes_[static_cast<std::size_t>(block.obstacle)];
+  const auto clear = [&box](const Eigen::Vector3d& c, double radius) {
+    return ball_clear_of_box(box.rotation_t, box.center, box.half_extents, c, radius);
+  };
+  const auto g = static_cast<std::size_t>(block.group);
   const Obstacle& o = scene_.obstacles[static_cast<std::size_t>(block.obstacle)];
   const int bound = groups_[g].bound;
   if (bound >= 0 && block.end - block.begin > 1) {
@@ -207,8 +222,22 @@ bool CollisionChecker::placed_is_valid(Scratch& s) const {
       table->prefetch(s.q);
     }
   }
-  for (const EnvironmentBlock& block : blocks_) {
-    if (environment_block_overlaps(block, s)) return false;
+  // Per shape group, its ball against every obstacle's box at once (SIMD across the boxes),
+  // then the blocks of the boxes it reaches (one scalar test per block before). Measured
+  // (three alternations, bench_python_reference --tables, states along lines, bookshelf_small
+  // 1): is_valid 940-1011 -> 847-869 ns (Panda), 2.91-3.27 -> 2.73-2.83 us (UR5: 146 blocks).
+  const std::size_t columns = detail::box_rows_padded(boxes_.size());
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    const int first = group_block_begin_[g], last = group_block_begin_[g + 1];
+    if (first == last) continue;
+    detail::sphere_clear_of_box_rows(box_rows_.data(), columns, s.group_centers[g].data(),
+                                     s.group_radii[g], kBallSlack, s.boxes_clear.data());
+    for (int b = first; b < last; ++b) {
+      const EnvironmentBlock& block = blocks_[static_cast<std::size_t>(b)];
+      const auto o = static_cast<std::size_t>(block.obstacle);
+      if ((s.boxes_clear[o / 64] >> (o % 64)) & 1u) continue;
+      if (environment_block_shapes_overlap(block, s)) return false;
+    }
   }
   for (const SelfBlock& block : self_blocks_) {
     if (self_block_overlaps(block, s)) return false;

@@ -57,6 +57,7 @@
 
 #include "chain_speed.hpp"
 #include "collision_checker_internals.hpp"
+#include "sphere_box_rows.hpp"
 
 namespace hullcheck {
 
@@ -618,19 +619,18 @@ CollisionChecker::MotionSearch::Outcome CollisionChecker::MotionSearch::test_env
     const Item& item) {
   const auto g = static_cast<std::size_t>(item.index);
   const int first = c.group_block_begin_[g], last = c.group_block_begin_[g + 1];
-  const Eigen::Vector3d& ball_centre = s.group_centers[g];
   const double radius = s.group_radii[g];
-  const auto gap = [&](int b) {
-    const EnvironmentBlock& block = c.blocks_[static_cast<std::size_t>(b)];
-    return c.box_gap(c.boxes_[static_cast<std::size_t>(block.obstacle)], ball_centre, radius);
-  };
-  // The smallest gap of the obstacles within the margin (the others are certified); the gaps
-  // kept for the contact test below.
+  // The group ball's gaps to every obstacle's box at once (SIMD across the boxes), then the
+  // smallest of its blocks' (the others are certified); the gaps kept for the contact test
+  // below.
+  detail::sphere_box_row_gaps(c.box_rows_.data(), detail::box_rows_padded(c.boxes_.size()),
+                              s.group_centers[g].data(), radius, s.box_gaps.data());
   double lower = std::numeric_limits<double>::infinity();
   s.group_gaps.resize(static_cast<std::size_t>(last - first));
   for (int b = first; b < last; ++b) {
-    s.group_gaps[static_cast<std::size_t>(b - first)] = gap(b);
-    lower = std::min(lower, s.group_gaps[static_cast<std::size_t>(b - first)]);
+    const auto o = static_cast<std::size_t>(c.blocks_[static_cast<std::size_t>(b)].obstacle);
+    s.group_gaps[static_cast<std::size_t>(b - first)] = s.box_gaps[o];
+    lower = std::min(lower, s.box_gaps[o]);
   }
   if (lower > margin(item.rate)) return Outcome::kCertified;
   const double rate = rate_of(item);

@@ -358,6 +358,8 @@ class CollisionChecker {
   // is_valid's broad phase and exact tests (collision_verdict.cpp): does any pair of the block
   // overlap at the placed shapes?
   bool environment_block_overlaps(const EnvironmentBlock& block, Scratch& s) const;
+  /// The same after the block's group ball was found to reach the obstacle's box.
+  bool environment_block_shapes_overlap(const EnvironmentBlock& block, Scratch& s) const;
   bool self_block_overlaps(const SelfBlock& block, Scratch& s) const;
   /// is_valid at the shapes placed in s (with s.q, when set, for the self blocks' tables).
   bool placed_is_valid(Scratch& s) const;
@@ -486,6 +488,7 @@ class CollisionChecker {
   std::vector<Eigen::Vector4d> inner_;  // per robot shape: a ball inside it (link frame)
   std::vector<char> exact_box_;         // per obstacle: boxes_ is the obstacle itself
   std::vector<double> box_values_;      // boxes_ packed for the SIMD tests (ball_tests_block.hpp)
+  std::vector<double> box_rows_;        // boxes_ as rows, one column per box (sphere_box_rows.hpp)
   std::vector<int> cover_begin_;
   void build_covering_spheres();
   std::vector<int> shape_begin_;  // per link (and one past): its first index in shapes_
