@@ -32,11 +32,11 @@ constexpr double kBallSlack = 1e-9;
     const EnvironmentBlock& block, Scratch& s) const {
   // Balls against the obstacle's oriented box: the shape group's ball first, then its shapes'.
   const ObstacleBox& box = boxes_[static_cast<std::size_t>(block.obstacle)];
-  const auto clear = [&box](const Eigen::Vector3d& c, double radius) {
-    return ball_clear_of_box(box.rotation_t, box.center, box.half_extents, c, radius);
-  };
   const auto g = static_cast<std::size_t>(block.group);
-  if (block.end - block.begin > 1 && clear(s.group_centers[g], s.group_radii[g])) return false;
+  if (block.end - block.begin > 1 && ball_clear_of_box(box.rotation_t, box.center, box.half_extents,
+                                                       s.group_centers[g], s.group_radii[g])) {
+    return false;
+  }
   return environment_block_shapes_overlap(block, s);
 }
 

@@ -21,10 +21,11 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 // Per box of the columns [j, j + Lanes(d)): the sphere centre's coordinates in the box frame,
-// minus the half extents (> 0: beyond that face pair).
+// minus the half extents (> 0: beyond that face pair); returns the centre's squared distance
+// from the box (0 inside).
 template <class D, class V>
-HWY_INLINE void excesses(D d, const double* rows, std::size_t padded, std::size_t j,
-                         const double* c, V* excess) {
+HWY_INLINE V excesses(D d, const double* rows, std::size_t padded, std::size_t j, const double* c,
+                      V* excess) {
   const auto row = [&](std::size_t r) { return hn::LoadU(d, rows + r * padded + j); };
   const V dx = hn::Sub(hn::Set(d, c[0]), row(9));
   const V dy = hn::Sub(hn::Set(d, c[1]), row(10));
@@ -35,6 +36,12 @@ HWY_INLINE void excesses(D d, const double* rows, std::size_t padded, std::size_
     local = hn::MulAdd(dz, row(3 * r + 2), local);
     excess[r] = hn::Sub(hn::Abs(local), row(12 + r));
   }
+  V outside2 = hn::Zero(d);
+  for (std::size_t r = 0; r < 3; ++r) {
+    const V beyond = hn::Max(excess[r], hn::Zero(d));
+    outside2 = hn::MulAdd(beyond, beyond, outside2);
+  }
+  return outside2;
 }
 
 void SphereClearOfBoxRows(const double* rows, std::size_t padded, const double* c, double radius,
@@ -46,12 +53,7 @@ void SphereClearOfBoxRows(const double* rows, std::size_t padded, const double* 
   for (std::size_t w = 0; w < (padded + 63) / 64; ++w) bits[w] = 0;
   for (std::size_t j = 0; j < padded; j += lanes) {
     hn::Vec<decltype(d)> excess[3];
-    excesses(d, rows, padded, j, c, excess);
-    auto outside2 = hn::Zero(d);
-    for (const auto& e : excess) {
-      const auto beyond = hn::Max(e, hn::Zero(d));
-      outside2 = hn::MulAdd(beyond, beyond, outside2);
-    }
+    const auto outside2 = excesses(d, rows, padded, j, c, excess);
     std::uint8_t mask[8] = {};
     hn::StoreMaskBits(d, hn::Gt(outside2, reach2), mask);
     bits[j / 64] |= static_cast<std::uint64_t>(mask[0]) << (j % 64);
@@ -65,13 +67,7 @@ void SphereBoxRowGaps(const double* rows, std::size_t padded, const double* c, d
   const auto r = hn::Set(d, radius);
   for (std::size_t j = 0; j < padded; j += lanes) {
     hn::Vec<decltype(d)> excess[3];
-    excesses(d, rows, padded, j, c, excess);
-    auto outside2 = hn::Zero(d);
-    for (const auto& e : excess) {
-      const auto beyond = hn::Max(e, hn::Zero(d));
-      outside2 = hn::MulAdd(beyond, beyond, outside2);
-    }
-    const auto outside = hn::Sqrt(outside2);
+    const auto outside = hn::Sqrt(excesses(d, rows, padded, j, c, excess));
     const auto deepest = hn::Max(hn::Max(excess[0], excess[1]), excess[2]);
     const auto gap = hn::IfThenElse(hn::Gt(outside, hn::Zero(d)), outside, deepest);
     hn::StoreU(hn::Sub(gap, r), d, gaps + j);
