@@ -14,6 +14,8 @@
 #include <hwy/highway.h>
 // clang-format on
 
+#include "box_distance_inl.hpp"
+
 HWY_BEFORE_NAMESPACE();
 namespace hullcheck {
 namespace HWY_NAMESPACE {
@@ -28,18 +30,8 @@ void LowerSphereBoxGap(const double* spheres, std::size_t n, const double* b, do
     auto lowest = hn::LoadU(d, gap + base);
     for (std::size_t i = 0; i < n; ++i) {
       const double* s = spheres + i * 4 * kL + base;
-      // The centre in the box's frame (rows of b[0..9): world to box), beyond its half extents.
-      const auto dx = hn::Sub(hn::LoadU(d, s), hn::Set(d, b[9]));
-      const auto dy = hn::Sub(hn::LoadU(d, s + kL), hn::Set(d, b[10]));
-      const auto dz = hn::Sub(hn::LoadU(d, s + 2 * kL), hn::Set(d, b[11]));
-      auto outside2 = hn::Zero(d);
-      for (int r = 0; r < 3; ++r) {
-        auto local = hn::Mul(dx, hn::Set(d, b[3 * r]));
-        local = hn::MulAdd(dy, hn::Set(d, b[3 * r + 1]), local);
-        local = hn::MulAdd(dz, hn::Set(d, b[3 * r + 2]), local);
-        const auto excess = hn::Max(hn::Sub(hn::Abs(local), hn::Set(d, b[12 + r])), hn::Zero(d));
-        outside2 = hn::MulAdd(excess, excess, outside2);
-      }
+      const auto outside2 =
+          box_distance2(d, hn::LoadU(d, s), hn::LoadU(d, s + kL), hn::LoadU(d, s + 2 * kL), b);
       lowest = hn::Min(lowest, hn::Sub(hn::Sqrt(outside2), hn::LoadU(d, s + 3 * kL)));
     }
     hn::StoreU(lowest, d, gap + base);

@@ -16,6 +16,8 @@
 #include <hwy/highway.h>
 // clang-format on
 
+#include "box_distance_inl.hpp"
+
 HWY_BEFORE_NAMESPACE();
 namespace hullcheck {
 namespace HWY_NAMESPACE {
@@ -29,23 +31,6 @@ HWY_INLINE std::uint32_t lane_bits(D d, M mask, std::size_t base) {
   std::uint8_t bytes[8] = {};
   hn::StoreMaskBits(d, mask, bytes);
   return static_cast<std::uint32_t>(bytes[0]) << base;
-}
-
-// Squared distance from the points (x, y, z lanes, model frame) to box `b` (kBoxValues values).
-template <class D, class V>
-HWY_INLINE V box_gap2(D d, V x, V y, V z, const double* b) {
-  const V dx = hn::Sub(x, hn::Set(d, b[9]));
-  const V dy = hn::Sub(y, hn::Set(d, b[10]));
-  const V dz = hn::Sub(z, hn::Set(d, b[11]));
-  V gap2 = hn::Zero(d);
-  for (int r = 0; r < 3; ++r) {
-    V local = hn::Mul(dx, hn::Set(d, b[3 * r]));
-    local = hn::MulAdd(dy, hn::Set(d, b[3 * r + 1]), local);
-    local = hn::MulAdd(dz, hn::Set(d, b[3 * r + 2]), local);
-    const V excess = hn::Max(hn::Sub(hn::Abs(local), hn::Set(d, b[12 + r])), hn::Zero(d));
-    gap2 = hn::MulAdd(excess, excess, gap2);
-  }
-  return gap2;
 }
 
 void PlaceSpheres(const double* pose, const double* spheres, std::size_t n, double* out) {
@@ -79,8 +64,8 @@ void SpheresClearOfBoxes(const double* spheres, std::size_t n, const double* box
       const double* b = boxes + j * detail::kBoxValues;
       std::uint32_t bits = 0;
       for (std::size_t base = 0; base < kL; base += lanes) {
-        const auto gap2 = box_gap2(d, hn::LoadU(d, s + base), hn::LoadU(d, s + kL + base),
-                                   hn::LoadU(d, s + 2 * kL + base), b);
+        const auto gap2 = box_distance2(d, hn::LoadU(d, s + base), hn::LoadU(d, s + kL + base),
+                                        hn::LoadU(d, s + 2 * kL + base), b);
         const auto reach = hn::Add(hn::LoadU(d, s + 3 * kL + base), hn::Set(d, slack));
         bits |= lane_bits(d, hn::Gt(gap2, hn::Mul(reach, reach)), base);
       }
@@ -98,7 +83,7 @@ std::uint8_t SpheresInBox(const double* spheres, std::size_t n, const double* bo
     for (std::size_t i = 0; i < n; ++i) {
       const double* s = spheres + i * 4 * kL + base;
       const auto gap2 =
-          box_gap2(d, hn::LoadU(d, s), hn::LoadU(d, s + kL), hn::LoadU(d, s + 2 * kL), box);
+          box_distance2(d, hn::LoadU(d, s), hn::LoadU(d, s + kL), hn::LoadU(d, s + 2 * kL), box);
       // The ball reaches into the box by more than the slack: its centre is closer to the box
       // than radius - slack (and that is positive).
       const auto depth = hn::Sub(hn::LoadU(d, s + 3 * kL), hn::Set(d, slack));

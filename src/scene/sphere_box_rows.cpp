@@ -15,33 +15,21 @@
 #include <hwy/highway.h>
 // clang-format on
 
+#include "box_distance_inl.hpp"
+
 HWY_BEFORE_NAMESPACE();
 namespace hullcheck {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Per box of the columns [j, j + Lanes(d)): the sphere centre's coordinates in the box frame,
-// minus the half extents (> 0: beyond that face pair); returns the centre's squared distance
-// from the box (0 inside).
-template <class D, class V>
-HWY_INLINE V excesses(D d, const double* rows, std::size_t padded, std::size_t j, const double* c,
-                      V* excess) {
-  const auto row = [&](std::size_t r) { return hn::LoadU(d, rows + r * padded + j); };
-  const V dx = hn::Sub(hn::Set(d, c[0]), row(9));
-  const V dy = hn::Sub(hn::Set(d, c[1]), row(10));
-  const V dz = hn::Sub(hn::Set(d, c[2]), row(11));
-  for (std::size_t r = 0; r < 3; ++r) {
-    V local = hn::Mul(dx, row(3 * r));
-    local = hn::MulAdd(dy, row(3 * r + 1), local);
-    local = hn::MulAdd(dz, row(3 * r + 2), local);
-    excess[r] = hn::Sub(hn::Abs(local), row(12 + r));
-  }
-  V outside2 = hn::Zero(d);
-  for (std::size_t r = 0; r < 3; ++r) {
-    const V beyond = hn::Max(excess[r], hn::Zero(d));
-    outside2 = hn::MulAdd(beyond, beyond, outside2);
-  }
-  return outside2;
+// The sphere centre's squared distance from the boxes of the columns [j, j + Lanes(d)), and
+// *deepest as box_distance2's.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V column_distance2(D d, const double* rows, std::size_t padded, std::size_t j,
+                              const double* c, V* deepest = nullptr) {
+  return box_distance2(
+      d, hn::Set(d, c[0]), hn::Set(d, c[1]), hn::Set(d, c[2]),
+      [&](std::size_t r) { return hn::LoadU(d, rows + r * padded + j); }, deepest);
 }
 
 void SphereClearOfBoxRows(const double* rows, std::size_t padded, const double* c, double radius,
@@ -52,8 +40,7 @@ void SphereClearOfBoxRows(const double* rows, std::size_t padded, const double* 
   const auto reach2 = hn::Mul(reach, reach);
   for (std::size_t w = 0; w < (padded + 63) / 64; ++w) bits[w] = 0;
   for (std::size_t j = 0; j < padded; j += lanes) {
-    hn::Vec<decltype(d)> excess[3];
-    const auto outside2 = excesses(d, rows, padded, j, c, excess);
+    const auto outside2 = column_distance2(d, rows, padded, j, c);
     std::uint8_t mask[8] = {};
     hn::StoreMaskBits(d, hn::Gt(outside2, reach2), mask);
     bits[j / 64] |= static_cast<std::uint64_t>(mask[0]) << (j % 64);
@@ -66,9 +53,8 @@ void SphereBoxRowGaps(const double* rows, std::size_t padded, const double* c, d
   const std::size_t lanes = hn::Lanes(d);
   const auto r = hn::Set(d, radius);
   for (std::size_t j = 0; j < padded; j += lanes) {
-    hn::Vec<decltype(d)> excess[3];
-    const auto outside = hn::Sqrt(excesses(d, rows, padded, j, c, excess));
-    const auto deepest = hn::Max(hn::Max(excess[0], excess[1]), excess[2]);
+    auto deepest = hn::Zero(d);
+    const auto outside = hn::Sqrt(column_distance2(d, rows, padded, j, c, &deepest));
     const auto gap = hn::IfThenElse(hn::Gt(outside, hn::Zero(d)), outside, deepest);
     hn::StoreU(hn::Sub(gap, r), d, gaps + j);
   }
